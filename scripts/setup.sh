@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian package pathlab needs. Idempotent: packages already
+# present are skipped, and nothing is done when all are there.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libembree-dev libtbb-dev libopenexr-dev libpng-dev libtinyobjloader-dev
+  libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libsqlite3-dev libboost-dev
+  libgtest-dev libbenchmark-dev
+)
+# Optional extras for `make bench` (Embree's tutorial path tracer) and the report.
+if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *bench* ]]; then PACKAGES+=(embree-tools hyperfine); fi
+if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *report* ]]; then PACKAGES+=(python3-matplotlib python3-numpy); fi
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "setup: installing ${missing[*]}" >&2
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

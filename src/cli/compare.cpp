@@ -1,0 +1,151 @@
+// `pathlab compare REFERENCE TEST`: image metrics between two images.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "metrics/error_map.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
+
+namespace pathlab::cli {
+namespace {
+
+struct CompareArgs {
+    std::string reference, test;
+    std::string metric = "all";
+    bool json = false;
+    std::string errorMap;
+    bool ldr = false, hdr = false;
+    float ppd = 0;  // 0: the default viewing conditions
+};
+
+struct CompareResults {
+    double mse = 0, rmse = 0, relmse = 0, psnr = 0;
+    bool hasPixelMetrics = false;
+    std::unique_ptr<flip::Result> flip;
+};
+
+bool wants(const CompareArgs& a, const char* metric) { return a.metric == "all" || a.metric == metric; }
+
+CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const Image& test) {
+    CompareResults out;
+    if (args.metric != "flip") {
+        out.hasPixelMetrics = true;
+        out.mse = meanSquaredError(ref, test);
+        out.rmse = std::sqrt(out.mse);
+        out.relmse = relativeMeanSquaredError(ref, test);
+        out.psnr = psnrFromMse(out.mse);
+    }
+    if (wants(args, "flip") || !args.errorMap.empty()) {
+        flip::Options options;
+        options.mode = args.ldr   ? flip::Mode::Ldr
+                       : args.hdr ? flip::Mode::Hdr
+                                  : flipModeForFiles(args.reference, args.test);
+        if (args.ppd > 0) options.ppd = args.ppd;
+        out.flip = std::make_unique<flip::Result>(flip::evaluate(ref, test, options));
+    }
+    return out;
+}
+
+// JSON has no infinity: PSNR of identical images is written as null.
+nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+
+nlohmann::json flipJson(const flip::Result& f) {
+    nlohmann::json j = {{"mean", f.stats.mean},
+                        {"weighted_median", f.stats.weightedMedian},
+                        {"q1", f.stats.q1},
+                        {"q3", f.stats.q3},
+                        {"min", f.stats.min},
+                        {"max", f.stats.max},
+                        {"ppd", f.ppd},
+                        {"mode", f.mode == flip::Mode::Ldr ? "ldr" : "hdr"}};
+    if (f.mode == flip::Mode::Hdr)
+        j["exposures"] = {{"start", f.exposures.start},
+                          {"stop", f.exposures.stop},
+                          {"count", f.exposures.count}};
+    else
+        j["exposures"] = nullptr;
+    return j;
+}
+
+void printJson(const CompareArgs& args, const CompareResults& r) {
+    nlohmann::json j = nlohmann::json::object();
+    if (r.hasPixelMetrics) {
+        if (wants(args, "mse")) j["mse"] = r.mse;
+        if (wants(args, "rmse")) j["rmse"] = r.rmse;
+        if (wants(args, "relmse")) {
+            j["relmse"] = r.relmse;
+            j["relmse_epsilon"] = kRelMseEpsilon;
+        }
+        if (wants(args, "psnr")) j["psnr"] = finiteOrNull(r.psnr);
+    }
+    if (r.flip) j["flip"] = flipJson(*r.flip);
+    std::printf("%s\n", j.dump().c_str());
+}
+
+void printText(const CompareArgs& args, const CompareResults& r) {
+    if (r.hasPixelMetrics) {
+        if (wants(args, "mse")) std::printf("mse     %.6g\n", r.mse);
+        if (wants(args, "rmse")) std::printf("rmse    %.6g\n", r.rmse);
+        if (wants(args, "relmse"))
+            std::printf("relmse  %.6g  (epsilon %g)\n", r.relmse, kRelMseEpsilon);
+        if (wants(args, "psnr")) std::printf("psnr    %.4f dB\n", r.psnr);
+    }
+    if (r.flip) {
+        const flip::Result& f = *r.flip;
+        std::printf("flip    mean %.6f  weighted median %.6f  q1 %.6f  q3 %.6f  min %.6f  max %.6f\n",
+                    f.stats.mean, f.stats.weightedMedian, f.stats.q1, f.stats.q3, f.stats.min,
+                    f.stats.max);
+        if (f.mode == flip::Mode::Ldr)
+            std::printf("        LDR-FLIP at %.2f pixels per degree\n", f.ppd);
+        else
+            std::printf("        HDR-FLIP at %.2f pixels per degree, %d exposures from %.4f to %.4f\n",
+                        f.ppd, f.exposures.count, f.exposures.start, f.exposures.stop);
+    }
+}
+
+void runCompare(const CompareArgs& args) {
+    // Fail before the work if the error map cannot be written.
+    if (!args.errorMap.empty()) checkWritable(args.errorMap);
+    const Image ref = readImage(args.reference);
+    const Image test = readImage(args.test);
+    requireComparable(ref, test, args.reference, args.test);
+    const CompareResults results = computeMetrics(args, ref, test);
+    if (!args.errorMap.empty())
+        writeErrorMap(args.errorMap, results.flip->errorMap, results.flip->width,
+                      results.flip->height);
+    if (args.json)
+        printJson(args, results);
+    else
+        printText(args, results);
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& app) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "Image metrics (MSE, RMSE, relMSE, PSNR, FLIP) of TEST against REFERENCE");
+    cmd->add_option("reference", args->reference, "Reference image (.exr, .png or .pfm)")
+        ->required();
+    cmd->add_option("test", args->test, "Test image, same size as the reference")->required();
+    cmd->add_option("--metric", args->metric, "Metric to compute (default: all)")
+        ->check(CLI::IsMember({"mse", "rmse", "relmse", "psnr", "flip", "all"}));
+    cmd->add_flag("--json", args->json, "Print one JSON object on stdout");
+    cmd->add_option("--error-map", args->errorMap,
+                    "Write the FLIP error map: .png in the magma colour map, .exr/.pfm raw values");
+    auto* ldr = cmd->add_flag("--ldr", args->ldr, "Force LDR-FLIP (inputs clamped to [0,1])");
+    auto* hdr = cmd->add_flag("--hdr", args->hdr, "Force HDR-FLIP (exposure range from the reference)");
+    ldr->excludes(hdr);
+    cmd->add_option("--ppd", args->ppd,
+                    "FLIP pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 3840 px display)")
+        ->check(CLI::PositiveNumber);
+    cmd->callback([args] { runCompare(*args); });
+}
+
+}  // namespace pathlab::cli

@@ -1,0 +1,249 @@
+#include "core/image.h"
+
+#include <png.h>
+#include <unistd.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace pathlab {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+// A temporary name beside the target, unique per process, renamed into place.
+std::string temporaryPathFor(const std::string& path) {
+    std::filesystem::path p(path);
+    return (p.parent_path() / ("." + p.filename().string() + ".tmp." + std::to_string(getpid())))
+        .string();
+}
+
+void commitTemporary(const std::string& tmp, const std::string& path) {
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw InputError("cannot write '" + path + "': " + ec.message());
+    }
+}
+
+Image readExr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        if (w <= 0 || h <= 0) throw InputError("image '" + path + "' is empty");
+        Image img(w, h);
+        const Imf::ChannelList& channels = file.header().channels();
+        const bool hasRgb = channels.findChannel("R") && channels.findChannel("G") &&
+                            channels.findChannel("B");
+        const bool hasY = channels.findChannel("Y") != nullptr;
+        if (!hasRgb && !hasY) throw InputError("image '" + path + "' has no R,G,B or Y channels");
+        Imf::FrameBuffer fb;
+        char* base = reinterpret_cast<char*>(img.rgb.data()) -
+                     (size_t(dw.min.x) + size_t(dw.min.y) * w) * 3 * sizeof(float);
+        const size_t xs = 3 * sizeof(float), ys = xs * w;
+        const char* names[3] = {"R", "G", "B"};
+        for (int c = 0; c < 3; ++c) {
+            const char* name = hasRgb ? names[c] : "Y";
+            if (!hasRgb && c > 0) break;
+            fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        if (!hasRgb)
+            for (size_t i = 0; i < img.pixelCount(); ++i)
+                img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = img.rgb[3 * i];
+        return img;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError("cannot read EXR '" + path + "': " + e.what());
+    }
+}
+
+void writeExr(const std::string& path, const Image& img) {
+    Imf::Header header(img.width, img.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer fb;
+    char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
+    const size_t xs = 3 * sizeof(float), ys = xs * img.width;
+    fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+    fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+    fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+    file.setFrameBuffer(fb);
+    file.writePixels(img.height);
+}
+
+Image readPng(const std::string& path) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&png, path.c_str()))
+        throw InputError("cannot read PNG '" + path + "': " + png.message);
+    // 16-bit files are decoded by libpng to linear 16-bit; 8-bit ones keep their
+    // sRGB code values, decoded here with the exact sRGB transfer function.
+    const bool sixteen = (png.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+    png.format = sixteen ? PNG_FORMAT_LINEAR_RGB : PNG_FORMAT_RGB;
+    Image img(static_cast<int>(png.width), static_cast<int>(png.height));
+    std::vector<unsigned char> buf(PNG_IMAGE_SIZE(png));
+    if (!png_image_finish_read(&png, nullptr, buf.data(), 0, nullptr)) {
+        std::string msg = png.message;
+        png_image_free(&png);
+        throw InputError("cannot read PNG '" + path + "': " + msg);
+    }
+    if (sixteen) {
+        const auto* p = reinterpret_cast<const uint16_t*>(buf.data());
+        for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = p[i] / 65535.0f;
+    } else {
+        float table[256];
+        for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(i / 255.0f);
+        for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = table[buf[i]];
+    }
+    return img;
+}
+
+void writePng(const std::string& path, const Image& img, float exposure) {
+    const float scale = std::exp2(exposure);
+    std::vector<unsigned char> buf(img.rgb.size());
+    for (size_t i = 0; i < buf.size(); ++i) {
+        float v = img.rgb[i] * scale;
+        v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+        buf[i] = static_cast<unsigned char>(std::lround(linearToSrgb(v) * 255.0f));
+    }
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(img.width);
+    png.height = static_cast<png_uint_32>(img.height);
+    png.format = PNG_FORMAT_RGB;
+    if (!png_image_write_to_file(&png, path.c_str(), 0, buf.data(), 0, nullptr))
+        throw InputError("cannot write PNG '" + path + "': " + png.message);
+}
+
+// PFM (Portable Float Map): "PF\n w h\n scale\n" then bottom-to-top rows of
+// float triples; a negative scale means little-endian.
+Image readPfm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot open '" + path + "'");
+    std::string magic;
+    int w = 0, h = 0;
+    double scale = 0;
+    in >> magic >> w >> h >> scale;
+    if (!in || (magic != "PF" && magic != "Pf") || w <= 0 || h <= 0 || w > (1 << 16) ||
+        h > (1 << 16) || scale == 0)
+        throw InputError("'" + path + "' is not a valid PFM file (bad header)");
+    in.get();  // the single whitespace byte after the header
+    const int channels = magic == "PF" ? 3 : 1;
+    std::vector<float> data(size_t(w) * h * channels);
+    in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
+    if (in.gcount() != std::streamsize(data.size() * sizeof(float)))
+        throw InputError("'" + path + "' is truncated");
+    if (scale > 0)  // big-endian data
+        for (float& f : data) {
+            uint32_t u;
+            std::memcpy(&u, &f, 4);
+            u = __builtin_bswap32(u);
+            std::memcpy(&f, &u, 4);
+        }
+    Image img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                img.rgb[(size_t(y) * w + x) * 3 + c] =
+                    data[(size_t(h - 1 - y) * w + x) * channels + (channels == 3 ? c : 0)];
+    return img;
+}
+
+void writePfm(const std::string& path, const Image& img) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw InputError("cannot write '" + path + "'");
+    out << "PF\n" << img.width << " " << img.height << "\n-1\n";
+    for (int y = img.height - 1; y >= 0; --y)
+        out.write(reinterpret_cast<const char*>(&img.rgb[size_t(y) * img.width * 3]),
+                  std::streamsize(img.width * 3 * sizeof(float)));
+    if (!out.flush()) throw InputError("cannot write '" + path + "': write failed");
+}
+
+}  // namespace
+
+float srgbToLinear(float v) {
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float v) {
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+ImageFormat imageFormatFromPath(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr") return ImageFormat::Exr;
+    if (ext == ".png") return ImageFormat::Png;
+    if (ext == ".pfm") return ImageFormat::Pfm;
+    throw InputError("unsupported image type '" + ext + "' for '" + path +
+                     "' (expected .exr, .png or .pfm)");
+}
+
+Image readImage(const std::string& path) {
+    const ImageFormat format = imageFormatFromPath(path);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw InputError("image '" + path + "' does not exist or is not a file");
+    switch (format) {
+        case ImageFormat::Exr: return readExr(path);
+        case ImageFormat::Png: return readPng(path);
+        case ImageFormat::Pfm: return readPfm(path);
+    }
+    throw InputError("unsupported image '" + path + "'");
+}
+
+void checkWritable(const std::string& path) {
+    imageFormatFromPath(path);
+    std::filesystem::path p(path);
+    std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw InputError("cannot write '" + path + "': directory '" + dir.string() +
+                         "' does not exist");
+    if (access(dir.c_str(), W_OK) != 0)
+        throw InputError("cannot write '" + path + "': no permission to write in '" +
+                         dir.string() + "'");
+}
+
+void writeImage(const std::string& path, const Image& image, float exposure) {
+    const ImageFormat format = imageFormatFromPath(path);
+    checkWritable(path);
+    const std::string tmp = temporaryPathFor(path);
+    try {
+        switch (format) {
+            case ImageFormat::Exr: writeExr(tmp, image); break;
+            case ImageFormat::Png: writePng(tmp, image, exposure); break;
+            case ImageFormat::Pfm: writePfm(tmp, image); break;
+        }
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw InputError("cannot write '" + path + "': " + e.what());
+    }
+    commitTemporary(tmp, path);
+}
+
+}  // namespace pathlab

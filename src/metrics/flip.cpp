@@ -1,0 +1,485 @@
+#include "metrics/flip.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "metrics/flip_color.h"
+
+namespace pathlab::flip {
+namespace {
+
+// Constants of [HPG20]: q_c (colour-difference exponent), p_c and p_t (the
+// knee of the colour-difference remapping), w (feature width in degrees) and
+// q_f (feature-difference exponent).
+constexpr float kColorExponent = 0.7f;
+constexpr float kColorKnee = 0.4f;
+constexpr float kColorKneeTarget = 0.95f;
+constexpr float kFeatureWidthDegrees = 0.082f;
+constexpr float kFeatureExponent = 0.5f;
+
+// The CSF Gaussians of [HPG20] in the spatial domain, a·sqrt(π/b)·exp(−π²x²/b)
+// with x in degrees: Yy (a=1, b=0.0047), Cx (a=1, b=0.0053), and Cz the sum of
+// (a=34.1, b=0.04) and (a=13.5, b=0.025).
+constexpr float kPi = 3.14159265358979f;
+constexpr float kAchromaticB = 0.0047f, kRedGreenB = 0.0053f;
+constexpr float kBlueYellowA1 = 34.1f, kBlueYellowB1 = 0.04f;
+constexpr float kBlueYellowA2 = 13.5f, kBlueYellowB2 = 0.025f;
+
+float csfGaussian(float x2, float a, float b) {
+    return a * std::sqrt(kPi / b) * std::exp(-(kPi * kPi) * x2 / b);
+}
+
+// The 1-D factor g whose outer product g(x)g(y) is the 2-D Gaussian above:
+// sqrt(a·sqrt(π/b))·exp(−π²x²/b).
+float csfGaussianFactor(float x2, float a, float b) {
+    return std::sqrt(a * std::sqrt(kPi / b)) * std::exp(-(kPi * kPi) * x2 / b);
+}
+
+// A single-channel image plane.
+struct Plane {
+    int width = 0, height = 0;
+    std::vector<float> values;
+    Plane() = default;
+    Plane(int w, int h) : width(w), height(h), values(size_t(w) * size_t(h)) {}
+    float* row(int y) { return values.data() + size_t(y) * width; }
+    const float* row(int y) const { return values.data() + size_t(y) * width; }
+};
+
+struct YcxczPlanes {
+    Plane y, cx, cz;
+};
+
+// Runs body(y) for every row, in parallel; each row is computed independently
+// so the result does not depend on the number of threads.
+template <typename Body>
+void forEachRow(int height, const Body& body) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
+        for (int y = r.begin(); y != r.end(); ++y) body(y);
+    });
+}
+
+// Copies a row into `padded` with `radius` clamped-edge samples on each side,
+// so the horizontal convolutions need no bounds checks.
+void padRow(const float* in, int width, int radius, std::vector<float>& padded) {
+    padded.resize(size_t(width) + 2 * size_t(radius));
+    for (int i = 0; i < radius; ++i) padded[i] = in[0];
+    std::copy(in, in + width, padded.begin() + radius);
+    for (int i = 0; i < radius; ++i) padded[size_t(radius) + width + i] = in[width - 1];
+}
+
+// out[x] = Σ_k w[k]·padded[x+k], taps accumulated in ascending order for every
+// pixel (vectorises over x).
+void convolveRow(const std::vector<float>& padded, const std::vector<float>& weights, int width,
+                 float* out) {
+    std::fill(out, out + width, 0.0f);
+    for (size_t k = 0; k < weights.size(); ++k) {
+        const float w = weights[k];
+        const float* src = padded.data() + k;
+        for (int x = 0; x < width; ++x) out[x] += w * src[x];
+    }
+}
+
+// out[x] = Σ_k w[k]·in(x, clamp(y+k−r)), the vertical counterpart.
+void convolveColumn(const Plane& in, int y, const std::vector<float>& weights, float* out) {
+    const int radius = int(weights.size() / 2);
+    std::fill(out, out + in.width, 0.0f);
+    for (size_t k = 0; k < weights.size(); ++k) {
+        const float w = weights[k];
+        const float* src = in.row(std::clamp(y + int(k) - radius, 0, in.height - 1));
+        for (int x = 0; x < in.width; ++x) out[x] += w * src[x];
+    }
+}
+
+YcxczPlanes toYcxcz(const Image& image) {
+    YcxczPlanes p{Plane(image.width, image.height), Plane(image.width, image.height),
+                  Plane(image.width, image.height)};
+    forEachRow(image.height, [&](int y) {
+        const float* rgb = &image.rgb[size_t(y) * image.width * 3];
+        for (int x = 0; x < image.width; ++x) {
+            const Color c = linearRgbToYcxcz({rgb[3 * x], rgb[3 * x + 1], rgb[3 * x + 2]});
+            p.y.row(y)[x] = c.x, p.cx.row(y)[x] = c.y, p.cz.row(y)[x] = c.z;
+        }
+    });
+    return p;
+}
+
+// The horizontal half of the CSF filtering of one image: four planes
+// (Yy, Cx, and Cz through each of the two blue–yellow factors).
+struct CsfHalf {
+    Plane y, cx, cz1, cz2;
+};
+
+CsfHalf filterCsfHorizontally(const YcxczPlanes& in, const CsfFilters& f) {
+    const int w = in.y.width, h = in.y.height;
+    CsfHalf out{Plane(w, h), Plane(w, h), Plane(w, h), Plane(w, h)};
+    forEachRow(h, [&](int y) {
+        std::vector<float> padded;
+        padRow(in.y.row(y), w, f.radius, padded);
+        convolveRow(padded, f.achromatic, w, out.y.row(y));
+        padRow(in.cx.row(y), w, f.radius, padded);
+        convolveRow(padded, f.redGreen, w, out.cx.row(y));
+        padRow(in.cz.row(y), w, f.radius, padded);
+        convolveRow(padded, f.blueYellow1, w, out.cz1.row(y));
+        convolveRow(padded, f.blueYellow2, w, out.cz2.row(y));
+    });
+    return out;
+}
+
+// Filtered YCxCz of one row → Hunt-adjusted L*a*b*, after clamping to the
+// displayable [0,1] linear RGB range ([HPG20], colour pipeline).
+struct RowBuffers {
+    std::vector<float> y, cx, cz1, cz2;
+    explicit RowBuffers(int w) : y(w), cx(w), cz1(w), cz2(w) {}
+};
+
+void filterCsfVertically(const CsfHalf& in, const CsfFilters& f, int y, RowBuffers& out) {
+    convolveColumn(in.y, y, f.achromatic, out.y.data());
+    convolveColumn(in.cx, y, f.redGreen, out.cx.data());
+    convolveColumn(in.cz1, y, f.blueYellow1, out.cz1.data());
+    convolveColumn(in.cz2, y, f.blueYellow2, out.cz2.data());
+}
+
+Color filteredToHuntLab(const RowBuffers& row, int x) {
+    const Color ycxcz{row.y[x], row.cx[x], row.cz1[x] + row.cz2[x]};
+    Color rgb = xyzToLinearRgb(ycxczToXyz(ycxcz));
+    rgb = {std::clamp(rgb.x, 0.0f, 1.0f), std::clamp(rgb.y, 0.0f, 1.0f),
+           std::clamp(rgb.z, 0.0f, 1.0f)};
+    return huntAdjust(linearRgbToLab(rgb));
+}
+
+// The colour difference ΔE_c in [0,1] of every pixel ([HPG20], colour pipeline).
+Plane colorDifference(const YcxczPlanes& reference, const YcxczPlanes& test, float ppd) {
+    const CsfFilters filters = makeCsfFilters(ppd);
+    const CsfHalf refHalf = filterCsfHorizontally(reference, filters);
+    const CsfHalf testHalf = filterCsfHorizontally(test, filters);
+    const float cmax = maxColorDistance();
+    const int w = reference.y.width, h = reference.y.height;
+    Plane out(w, h);
+    forEachRow(h, [&](int y) {
+        RowBuffers refRow(w), testRow(w);
+        filterCsfVertically(refHalf, filters, y, refRow);
+        filterCsfVertically(testHalf, filters, y, testRow);
+        for (int x = 0; x < w; ++x) {
+            const float distance = hyab(filteredToHuntLab(refRow, x), filteredToHuntLab(testRow, x));
+            out.row(y)[x] = remapColorDifference(std::pow(distance, kColorExponent), cmax);
+        }
+    });
+    return out;
+}
+
+// Horizontal half of the feature filtering of the achromatic channel
+// normalised to [0,1]: x-derivatives and the x-Gaussian.
+struct FeatureHalf {
+    Plane dx, ddx, gauss;
+};
+
+FeatureHalf filterFeaturesHorizontally(const Plane& achromatic, const FeatureFilters& f) {
+    const int w = achromatic.width, h = achromatic.height;
+    FeatureHalf out{Plane(w, h), Plane(w, h), Plane(w, h)};
+    forEachRow(h, [&](int y) {
+        std::vector<float> padded;
+        padRow(achromatic.row(y), w, f.radius, padded);
+        convolveRow(padded, f.firstDerivative, w, out.dx.row(y));
+        convolveRow(padded, f.secondDerivative, w, out.ddx.row(y));
+        convolveRow(padded, f.gaussian, w, out.gauss.row(y));
+    });
+    return out;
+}
+
+// Yy of YCxCz back to [0,1] ((Yy + 16)/116, i.e. relative luminance), the
+// input of the feature detectors ([HPG20], feature pipeline).
+Plane normalizedAchromatic(const Plane& yy) {
+    Plane out(yy.width, yy.height);
+    forEachRow(yy.height, [&](int y) {
+        for (int x = 0; x < yy.width; ++x)
+            out.row(y)[x] = yy.row(y)[x] * (1.0f / 116.0f) + 16.0f / 116.0f;
+    });
+    return out;
+}
+
+// Edge and point magnitudes of one row: |∇(G*Y)| and |(∂²x, ∂²y)(G*Y)|.
+struct FeatureRow {
+    std::vector<float> edge, point;
+};
+
+FeatureRow featureMagnitudes(const FeatureHalf& half, const FeatureFilters& f, int y) {
+    const int w = half.dx.width;
+    std::vector<float> dx(w), ddx(w), dy(w), ddy(w);
+    convolveColumn(half.dx, y, f.gaussian, dx.data());
+    convolveColumn(half.ddx, y, f.gaussian, ddx.data());
+    convolveColumn(half.gauss, y, f.firstDerivative, dy.data());
+    convolveColumn(half.gauss, y, f.secondDerivative, ddy.data());
+    FeatureRow row{std::vector<float>(w), std::vector<float>(w)};
+    for (int x = 0; x < w; ++x) {
+        row.edge[x] = std::sqrt(dx[x] * dx[x] + dy[x] * dy[x]);
+        row.point[x] = std::sqrt(ddx[x] * ddx[x] + ddy[x] * ddy[x]);
+    }
+    return row;
+}
+
+// Combines colour and feature differences into FLIP, in place:
+// ΔE = ΔE_c^(1 − ΔE_f), ΔE_f = (max(|Δedge|, |Δpoint|)/√2)^q_f ([HPG20],
+// final difference map).
+void combineWithFeatures(const Plane& refY, const Plane& testY, float ppd, Plane& error) {
+    const FeatureFilters filters = makeFeatureFilters(ppd);
+    const FeatureHalf refHalf = filterFeaturesHorizontally(normalizedAchromatic(refY), filters);
+    const FeatureHalf testHalf = filterFeaturesHorizontally(normalizedAchromatic(testY), filters);
+    const float inverseSqrt2 = 1.0f / std::sqrt(2.0f);
+    forEachRow(error.height, [&](int y) {
+        const FeatureRow ref = featureMagnitudes(refHalf, filters, y);
+        const FeatureRow test = featureMagnitudes(testHalf, filters, y);
+        for (int x = 0; x < error.width; ++x) {
+            const float edge = std::fabs(ref.edge[x] - test.edge[x]);
+            const float point = std::fabs(ref.point[x] - test.point[x]);
+            const float feature = std::pow(inverseSqrt2 * std::max(edge, point), kFeatureExponent);
+            error.row(y)[x] = std::pow(error.row(y)[x], 1.0f - feature);
+        }
+    });
+}
+
+// ACES fit coefficients: (a·x² + b·x + c) / (d·x² + e·x + f).
+struct ToneCurve {
+    float a, b, c, d, e, f;
+};
+constexpr ToneCurve kAces{0.6f * 0.6f * 2.51f, 0.6f * 0.03f, 0.0f,
+                          0.6f * 0.6f * 2.43f, 0.6f * 0.59f, 0.14f};
+
+Image exposeAndToneMap(const Image& image, float exposure) {
+    const float scale = std::pow(2.0f, exposure);
+    Image out(image.width, image.height);
+    forEachRow(image.height, [&](int y) {
+        const size_t begin = size_t(y) * image.width * 3, end = begin + size_t(image.width) * 3;
+        for (size_t i = begin; i < end; ++i)
+            out.rgb[i] = std::clamp(acesToneMap(image.rgb[i] * scale), 0.0f, 1.0f);
+    });
+    return out;
+}
+
+void requireSameSize(const Image& reference, const Image& test) {
+    if (reference.width != test.width || reference.height != test.height)
+        throw InputError("images differ in size: reference " + std::to_string(reference.width) +
+                         "x" + std::to_string(reference.height) + ", test " +
+                         std::to_string(test.width) + "x" + std::to_string(test.height));
+    if (reference.pixelCount() == 0) throw InputError("images are empty");
+}
+
+Image clampedToUnit(const Image& image) {
+    Image out = image;
+    for (float& v : out.rgb) v = std::clamp(v, 0.0f, 1.0f);
+    return out;
+}
+
+ExposureRange resolveExposures(const Image& reference, const Options& options) {
+    ExposureRange range;
+    if (!options.startExposure || !options.stopExposure) range = automaticExposureRange(reference);
+    if (options.startExposure) range.start = *options.startExposure;
+    if (options.stopExposure) range.stop = *options.stopExposure;
+    if (!(range.start <= range.stop))
+        throw InputError("start exposure must not exceed stop exposure");
+    range.count = options.exposureCount
+                      ? *options.exposureCount
+                      : int(std::max(2.0f, std::ceil(range.stop - range.start)));
+    if (range.count < 2) throw InputError("HDR-FLIP needs at least 2 exposures");
+    return range;
+}
+
+}  // namespace
+
+float pixelsPerDegree(float distanceMeters, float displayWidthMeters, float displayWidthPixels) {
+    return distanceMeters * (displayWidthPixels / displayWidthMeters) * (kPi / 180.0f);
+}
+
+float defaultPixelsPerDegree() { return pixelsPerDegree(0.7f, 0.7f, 3840.0f); }
+
+CsfFilters makeCsfFilters(float ppd) {
+    // Radius: three standard deviations of the widest Gaussian; b = 2π²σ².
+    const float widestB = std::max({kAchromaticB, kRedGreenB, kBlueYellowB1, kBlueYellowB2});
+    CsfFilters f;
+    f.radius = int(std::ceil(3.0f * std::sqrt(widestB / (2.0f * kPi * kPi)) * ppd));
+    const int width = 2 * f.radius + 1;
+    f.achromatic.resize(width), f.redGreen.resize(width);
+    f.blueYellow1.resize(width), f.blueYellow2.resize(width);
+    float sumY = 0, sumCx = 0, sumCz1 = 0, sumCz2 = 0;
+    for (int i = 0; i < width; ++i) {
+        const float degrees = float(i - f.radius) * (1.0f / ppd);
+        const float x2 = degrees * degrees;
+        sumY += f.achromatic[i] = csfGaussian(x2, 1.0f, kAchromaticB);
+        sumCx += f.redGreen[i] = csfGaussian(x2, 1.0f, kRedGreenB);
+        sumCz1 += f.blueYellow1[i] = csfGaussianFactor(x2, kBlueYellowA1, kBlueYellowB1);
+        sumCz2 += f.blueYellow2[i] = csfGaussianFactor(x2, kBlueYellowA2, kBlueYellowB2);
+    }
+    // The 2-D blue–yellow kernel g1⊗g1 + g2⊗g2 sums to S1² + S2².
+    const float czScale = 1.0f / std::sqrt(sumCz1 * sumCz1 + sumCz2 * sumCz2);
+    for (int i = 0; i < width; ++i) {
+        f.achromatic[i] *= 1.0f / sumY;
+        f.redGreen[i] *= 1.0f / sumCx;
+        f.blueYellow1[i] *= czScale;
+        f.blueYellow2[i] *= czScale;
+    }
+    return f;
+}
+
+FeatureFilters makeFeatureFilters(float ppd) {
+    const float sigma = 0.5f * kFeatureWidthDegrees * ppd;
+    FeatureFilters f;
+    f.radius = int(std::ceil(3.0f * sigma));
+    const int width = 2 * f.radius + 1;
+    f.gaussian.resize(width), f.firstDerivative.resize(width), f.secondDerivative.resize(width);
+    float sumG = 0, sumD1Pos = 0, sumD1Neg = 0, sumD2Pos = 0, sumD2Neg = 0;
+    for (int i = 0; i < width; ++i) {
+        const float x = float(i - f.radius);
+        const float g = std::exp(-(x * x) / (2.0f * sigma * sigma));
+        const float d1 = -x * g;                                 // ∝ dG/dx
+        const float d2 = (x * x / (sigma * sigma) - 1.0f) * g;  // ∝ d²G/dx²
+        f.gaussian[i] = g, f.firstDerivative[i] = d1, f.secondDerivative[i] = d2;
+        sumG += g;
+        (d1 > 0 ? sumD1Pos : sumD1Neg) += std::fabs(d1);
+        (d2 > 0 ? sumD2Pos : sumD2Neg) += std::fabs(d2);
+    }
+    for (int i = 0; i < width; ++i) {
+        f.gaussian[i] /= sumG;
+        float& d1 = f.firstDerivative[i];
+        d1 /= d1 > 0 ? sumD1Pos : sumD1Neg;
+        float& d2 = f.secondDerivative[i];
+        d2 /= d2 > 0 ? sumD2Pos : sumD2Neg;
+    }
+    return f;
+}
+
+FeatureMaps detectFeatures(const std::vector<float>& achromatic, int width, int height,
+                           float ppd) {
+    Plane in(width, height);
+    in.values = achromatic;
+    const FeatureFilters filters = makeFeatureFilters(ppd);
+    const FeatureHalf half = filterFeaturesHorizontally(in, filters);
+    FeatureMaps maps{std::vector<float>(in.values.size()), std::vector<float>(in.values.size())};
+    forEachRow(height, [&](int y) {
+        const FeatureRow row = featureMagnitudes(half, filters, y);
+        std::copy(row.edge.begin(), row.edge.end(), maps.edge.begin() + size_t(y) * width);
+        std::copy(row.point.begin(), row.point.end(), maps.point.begin() + size_t(y) * width);
+    });
+    return maps;
+}
+
+float maxColorDistance() {
+    const Color green = huntAdjust(linearRgbToLab({0.0f, 1.0f, 0.0f}));
+    const Color blue = huntAdjust(linearRgbToLab({0.0f, 0.0f, 1.0f}));
+    return std::pow(hyab(green, blue), kColorExponent);
+}
+
+float remapColorDifference(float poweredDistance, float cmax) {
+    const float knee = kColorKnee * cmax;
+    if (poweredDistance < knee) return poweredDistance * (kColorKneeTarget / knee);
+    return kColorKneeTarget + ((poweredDistance - knee) / (cmax - knee)) * (1.0f - kColorKneeTarget);
+}
+
+float acesToneMap(float v) {
+    const ToneCurve& t = kAces;
+    return ((v * v) * t.a + v * t.b + t.c) / ((v * v) * t.d + v * t.e + t.f);
+}
+
+std::vector<float> ldrFlipErrorMap(const Image& reference, const Image& test, float ppd) {
+    requireSameSize(reference, test);
+    const YcxczPlanes ref = toYcxcz(reference), tst = toYcxcz(test);
+    Plane error = colorDifference(ref, tst, ppd);
+    combineWithFeatures(ref.y, tst.y, ppd, error);
+    return std::move(error.values);
+}
+
+ExposureRange automaticExposureRange(const Image& reference) {
+    // x where the tone curve reaches 0.85: (a − t·d)x² + (b − t·e)x + (c − t·f) = 0.
+    const float t = 0.85f;
+    const float qa = kAces.a - t * kAces.d, qb = kAces.b - t * kAces.e, qc = kAces.c - t * kAces.f;
+    const float half = -0.5f * (qb / qa);
+    const float knee = half + std::sqrt(half * half - qc / qa);
+
+    std::vector<float> luminances(reference.pixelCount());
+    float largest = 0, smallestPositive = INFINITY;
+    for (size_t i = 0; i < luminances.size(); ++i) {
+        const float* p = &reference.rgb[3 * i];
+        const float l = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+        luminances[i] = l;
+        largest = std::max(largest, l);
+        if (l > 0) smallestPositive = std::min(smallestPositive, l);
+    }
+    if (!(largest > 0)) return {0.0f, 0.0f, 2};  // black reference: nothing to expose
+    auto middle = luminances.begin() + luminances.size() / 2;
+    std::nth_element(luminances.begin(), middle, luminances.end());
+    // A black median would give an infinite stop exposure; fall back to the
+    // darkest non-black pixel.
+    const float median = *middle > 0 ? *middle : smallestPositive;
+    ExposureRange range{std::log2(knee / largest), std::log2(knee / median), 0};
+    range.count = int(std::max(2.0f, std::ceil(range.stop - range.start)));
+    return range;
+}
+
+std::vector<float> hdrFlipErrorMap(const Image& reference, const Image& test, float ppd,
+                                   const ExposureRange& exposures) {
+    requireSameSize(reference, test);
+    std::vector<float> maximum(reference.pixelCount(), 0.0f);
+    const float step = (exposures.stop - exposures.start) / float(exposures.count - 1);
+    for (int i = 0; i < exposures.count; ++i) {
+        const float exposure = exposures.start + float(i) * step;
+        const std::vector<float> error = ldrFlipErrorMap(exposeAndToneMap(reference, exposure),
+                                                         exposeAndToneMap(test, exposure), ppd);
+        for (size_t p = 0; p < maximum.size(); ++p) maximum[p] = std::max(maximum[p], error[p]);
+    }
+    return maximum;
+}
+
+double weightedPercentile(std::vector<float> errors, double p) {
+    std::sort(errors.begin(), errors.end());
+    double total = 0;
+    for (float e : errors) total += e;
+    double running = 0;
+    for (float e : errors) {
+        running += e;
+        if (running > p * total) return e;
+    }
+    return 0.0;
+}
+
+Statistics poolErrors(const std::vector<float>& errors) {
+    Statistics s;
+    if (errors.empty()) return s;
+    std::vector<float> sorted = errors;
+    std::sort(sorted.begin(), sorted.end());
+    double total = 0;
+    for (float e : errors) total += e;  // image order: independent of sorting
+    s.mean = total / double(errors.size());
+    s.min = sorted.front(), s.max = sorted.back();
+    double sortedTotal = 0;
+    for (float e : sorted) sortedTotal += e;
+    double* targets[3] = {&s.q1, &s.weightedMedian, &s.q3};
+    const double fractions[3] = {0.25, 0.5, 0.75};
+    double running = 0;
+    int next = 0;
+    for (size_t i = 0; i < sorted.size() && next < 3; ++i) {
+        running += sorted[i];
+        while (next < 3 && running > fractions[next] * sortedTotal) *targets[next++] = sorted[i];
+    }
+    return s;
+}
+
+Result evaluate(const Image& reference, const Image& test, const Options& options) {
+    requireSameSize(reference, test);
+    if (!(options.ppd > 0)) throw InputError("pixels per degree must be positive");
+    Result r;
+    r.width = reference.width, r.height = reference.height;
+    r.mode = options.mode, r.ppd = options.ppd;
+    if (options.mode == Mode::Ldr) {
+        r.errorMap = ldrFlipErrorMap(clampedToUnit(reference), clampedToUnit(test), options.ppd);
+    } else {
+        r.exposures = resolveExposures(reference, options);
+        r.errorMap = hdrFlipErrorMap(reference, test, options.ppd, r.exposures);
+    }
+    r.stats = poolErrors(r.errorMap);
+    return r;
+}
+
+}  // namespace pathlab::flip

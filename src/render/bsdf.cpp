@@ -1,0 +1,202 @@
+#include "render/bsdf.h"
+
+#include <complex>
+
+#include "render/sampling_routines.h"
+
+namespace pathlab {
+namespace {
+
+// Below this roughness the GGX lobe is numerically a delta; treat it as one.
+constexpr float kSmoothAlpha = 1e-3f;
+
+// Two-sided opaque surfaces: evaluate with both directions flipped to the
+// upper hemisphere when wo is below.
+inline void flipToUpper(Vec3f& wo, Vec3f& wi) {
+    if (wo.z < 0) wo = -wo, wi = -wi;
+}
+
+Vec3f conductorFresnel(float cosTheta, Vec3f eta, Vec3f k) {
+    return {fresnelComplex(cosTheta, eta.x, k.x), fresnelComplex(cosTheta, eta.y, k.y),
+            fresnelComplex(cosTheta, eta.z, k.z)};
+}
+
+}  // namespace
+
+float fresnelDielectric(float cosThetaI, float eta) {
+    cosThetaI = std::clamp(cosThetaI, -1.0f, 1.0f);
+    if (cosThetaI < 0) eta = 1 / eta, cosThetaI = -cosThetaI;
+    const float sin2T = (1 - cosThetaI * cosThetaI) / (eta * eta);
+    if (sin2T >= 1) return 1;  // total internal reflection
+    const float cosT = std::sqrt(1 - sin2T);
+    const float rPar = (eta * cosThetaI - cosT) / (eta * cosThetaI + cosT);
+    const float rPerp = (cosThetaI - eta * cosT) / (cosThetaI + eta * cosT);
+    return (rPar * rPar + rPerp * rPerp) / 2;
+}
+
+float fresnelComplex(float cosThetaI, float etaRe, float k) {
+    using C = std::complex<float>;
+    cosThetaI = std::clamp(cosThetaI, 0.0f, 1.0f);
+    const C eta(etaRe, k);
+    const float sin2I = 1 - cosThetaI * cosThetaI;
+    const C sin2T = C(sin2I) / (eta * eta);
+    const C cosT = std::sqrt(C(1) - sin2T);
+    const C rPar = (eta * cosThetaI - cosT) / (eta * cosThetaI + cosT);
+    const C rPerp = (C(cosThetaI) - eta * cosT) / (C(cosThetaI) + eta * cosT);
+    return (std::norm(rPar) + std::norm(rPerp)) / 2;
+}
+
+bool refract(Vec3f wi, Vec3f n, float eta, float* etaRelative, Vec3f* wt) {
+    float cosI = dot(n, wi);
+    if (cosI < 0) eta = 1 / eta, cosI = -cosI, n = -n;
+    const float sin2T = std::max(0.0f, 1 - cosI * cosI) / (eta * eta);
+    if (sin2T >= 1) return false;
+    const float cosT = std::sqrt(1 - sin2T);
+    *wt = -wi / eta + n * (cosI / eta - cosT);
+    *etaRelative = eta;
+    return true;
+}
+
+float GgxDistribution::D(Vec3f wm) const {
+    const float cos2 = wm.z * wm.z;
+    if (cos2 <= 0) return 0;
+    const float tan2 = (1 - cos2) / cos2;
+    const float e = 1 + tan2 / (alpha * alpha);
+    return 1 / (kPi * alpha * alpha * cos2 * cos2 * e * e);
+}
+
+float GgxDistribution::lambda(Vec3f w) const {
+    const float cos2 = w.z * w.z;
+    if (cos2 <= 0) return 0;
+    const float tan2 = (1 - cos2) / cos2;
+    return (std::sqrt(1 + alpha * alpha * tan2) - 1) / 2;
+}
+
+float GgxDistribution::visibleD(Vec3f wo, Vec3f wm) const {
+    return G1(wo) / absCosTheta(wo) * D(wm) * std::abs(dot(wo, wm));
+}
+
+Vec3f GgxDistribution::sampleVisibleNormal(Vec3f wo, Vec2f u) const {
+    // Stretch to the unit-roughness configuration (Heitz 2018, sec. 4).
+    Vec3f wh = normalize(Vec3f(alpha * wo.x, alpha * wo.y, wo.z));
+    if (wh.z < 0) wh = -wh;
+    const Vec3f t1 = wh.z < 0.99999f ? normalize(cross(Vec3f(0, 0, 1), wh)) : Vec3f(1, 0, 0);
+    const Vec3f t2 = cross(wh, t1);
+    // A point on the projected hemisphere: a disk whose lower half is squashed.
+    const float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
+    float px = r * std::cos(phi), py = r * std::sin(phi);
+    const float h = std::sqrt(1 - px * px);
+    py = (1 - (1 + wh.z) / 2) * h + ((1 + wh.z) / 2) * py;
+    const float pz = std::sqrt(std::max(0.0f, 1 - px * px - py * py));
+    const Vec3f nh = t1 * px + t2 * py + wh * pz;
+    return normalize(Vec3f(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
+}
+
+Bsdf Bsdf::diffuse(Vec3f albedo) {
+    Bsdf b;
+    b.kind_ = BsdfKind::Diffuse;
+    b.color_ = albedo;
+    return b;
+}
+Bsdf Bsdf::mirror(Vec3f reflectance) {
+    Bsdf b;
+    b.kind_ = BsdfKind::Mirror;
+    b.color_ = reflectance;
+    return b;
+}
+Bsdf Bsdf::dielectric(float eta) {
+    Bsdf b;
+    b.kind_ = BsdfKind::Dielectric;
+    b.eta_ = Vec3f(eta);
+    return b;
+}
+Bsdf Bsdf::conductor(Vec3f eta, Vec3f k, float alpha) {
+    Bsdf b;
+    b.kind_ = BsdfKind::Conductor;
+    b.eta_ = eta;
+    b.k_ = k;
+    b.alpha_ = alpha;
+    return b;
+}
+
+bool Bsdf::isSpecular() const {
+    return kind_ == BsdfKind::Mirror || kind_ == BsdfKind::Dielectric ||
+           (kind_ == BsdfKind::Conductor && alpha_ < kSmoothAlpha);
+}
+
+Vec3f Bsdf::f(Vec3f wo, Vec3f wi) const {
+    if (isSpecular()) return Vec3f(0.0f);
+    flipToUpper(wo, wi);
+    if (wi.z <= 0 || wo.z <= 0) return Vec3f(0.0f);
+    if (kind_ == BsdfKind::Diffuse) return color_ * kInvPi;
+    // Conductor: Torrance–Sparrow with GGX (pbrt-v4 eq. 9.33).
+    Vec3f wm = wi + wo;
+    if (dot(wm, wm) == 0) return Vec3f(0.0f);
+    wm = normalize(wm);
+    const GgxDistribution ggx{alpha_};
+    const Vec3f F = conductorFresnel(std::abs(dot(wo, wm)), eta_, k_);
+    return F * (ggx.D(wm) * ggx.G(wo, wi) / (4 * wi.z * wo.z));
+}
+
+float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
+    if (isSpecular()) return 0;
+    flipToUpper(wo, wi);
+    if (wi.z <= 0 || wo.z <= 0) return 0;
+    if (kind_ == BsdfKind::Diffuse) return cosineHemispherePdf(wi.z);
+    Vec3f wm = wi + wo;
+    if (dot(wm, wm) == 0) return 0;
+    wm = normalize(wm);
+    const GgxDistribution ggx{alpha_};
+    // Change of variables from half vector to reflected direction (eq. 9.34).
+    return ggx.visibleD(wo, wm) / (4 * std::abs(dot(wo, wm)));
+}
+
+std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) const {
+    if (wo.z == 0) return std::nullopt;
+    const float side = wo.z < 0 ? -1.0f : 1.0f;
+    switch (kind_) {
+        case BsdfKind::Diffuse: {
+            Vec3f wi = sampleCosineHemisphere(u);
+            wi.z *= side;
+            if (wi.z == 0) return std::nullopt;
+            return BsdfSample{wi, color_ * kInvPi, cosineHemispherePdf(std::abs(wi.z)), false};
+        }
+        case BsdfKind::Mirror: {
+            const Vec3f wi{-wo.x, -wo.y, wo.z};
+            return BsdfSample{wi, color_ / absCosTheta(wi), 1.0f, true};
+        }
+        case BsdfKind::Dielectric: {
+            const float R = fresnelDielectric(wo.z, eta_.x), T = 1 - R;
+            if (uLobe < R) {
+                const Vec3f wi{-wo.x, -wo.y, wo.z};
+                return BsdfSample{wi, Vec3f(R / absCosTheta(wi)), R, true};
+            }
+            Vec3f wi;
+            float etap;
+            if (!refract(wo, Vec3f(0, 0, 1), eta_.x, &etap, &wi)) return std::nullopt;
+            // Radiance is compressed by 1/η² entering a denser medium (pbrt-v4 sec. 9.5.2,
+            // "non-symmetric scattering due to refraction").
+            return BsdfSample{wi, Vec3f(T / absCosTheta(wi) / (etap * etap)), T, true};
+        }
+        case BsdfKind::Conductor: {
+            if (isSpecular()) {
+                const Vec3f wi{-wo.x, -wo.y, wo.z};
+                const Vec3f F = conductorFresnel(absCosTheta(wo), eta_, k_);
+                return BsdfSample{wi, F / absCosTheta(wi), 1.0f, true};
+            }
+            const Vec3f woUp = wo * side;
+            const GgxDistribution ggx{alpha_};
+            const Vec3f wm = ggx.sampleVisibleNormal(woUp, u);
+            Vec3f wi = reflect(woUp, wm);
+            if (wi.z <= 0) return std::nullopt;
+            const float pdf = ggx.visibleD(woUp, wm) / (4 * std::abs(dot(woUp, wm)));
+            const Vec3f F = conductorFresnel(std::abs(dot(woUp, wm)), eta_, k_);
+            const Vec3f f = F * (ggx.D(wm) * ggx.G(woUp, wi) / (4 * wi.z * woUp.z));
+            if (pdf <= 0) return std::nullopt;
+            return BsdfSample{wi * side, f, pdf, false};
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,71 @@
+// BSDFs in the local shading frame (normal = +z, directions point away from
+// the surface). Conventions follow pbrt-v4 (ch. 9): f() excludes the cosine;
+// a sample returns f, the solid-angle pdf, and for delta lobes f = R/|cosθi|
+// with pdf equal to the discrete lobe probability.
+#pragma once
+
+#include <optional>
+
+#include "core/math.h"
+
+namespace pathlab {
+
+struct BsdfSample {
+    Vec3f wi;
+    Vec3f f;
+    float pdf = 0;
+    bool specular = false;
+    // The throughput factor f·|cosθi|/pdf.
+    Vec3f weight() const { return f * (absCosTheta(wi) / pdf); }
+};
+
+enum class BsdfKind { Diffuse, Mirror, Dielectric, Conductor };
+
+class Bsdf {
+public:
+    static Bsdf diffuse(Vec3f albedo);
+    static Bsdf mirror(Vec3f reflectance);
+    static Bsdf dielectric(float eta);
+    static Bsdf conductor(Vec3f eta, Vec3f k, float alpha);
+
+    BsdfKind kind() const { return kind_; }
+    // True when every lobe is a Dirac delta: next-event estimation cannot help.
+    bool isSpecular() const;
+
+    Vec3f f(Vec3f wo, Vec3f wi) const;
+    float pdf(Vec3f wo, Vec3f wi) const;
+    // uLobe chooses between lobes (reflection or transmission at glass); u
+    // chooses the direction within the lobe.
+    std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
+
+private:
+    BsdfKind kind_ = BsdfKind::Diffuse;
+    Vec3f color_{0.0f};      // albedo / reflectance
+    Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index
+    float alpha_ = 0;
+};
+
+// Unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 eq. 9.6);
+// eta = n_inside / n_outside, cosThetaI signed (negative: arriving from inside).
+float fresnelDielectric(float cosThetaI, float eta);
+// Fresnel reflectance of a conductor with complex index eta + i k (pbrt-v4 9.3.6).
+float fresnelComplex(float cosThetaI, float eta, float k);
+// Refraction of wi about n; false on total internal reflection. etaRelative
+// receives the relative index along wi's side.
+bool refract(Vec3f wi, Vec3f n, float eta, float* etaRelative, Vec3f* wt);
+
+// Trowbridge–Reitz (GGX) microfacet distribution, isotropic (Walter et al.
+// 2007; visible-normal sampling by Heitz 2018, "Sampling the GGX Distribution of
+// Visible Normals").
+struct GgxDistribution {
+    float alpha;
+    float D(Vec3f wm) const;
+    float lambda(Vec3f w) const;
+    float G1(Vec3f w) const { return 1 / (1 + lambda(w)); }
+    float G(Vec3f wo, Vec3f wi) const { return 1 / (1 + lambda(wo) + lambda(wi)); }
+    // Density of visible normals as seen from wo (Heitz 2018 eq. 3).
+    float visibleD(Vec3f wo, Vec3f wm) const;
+    Vec3f sampleVisibleNormal(Vec3f wo, Vec2f u) const;
+};
+
+}  // namespace pathlab

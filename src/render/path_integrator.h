@@ -1,0 +1,111 @@
+// Unidirectional path tracing of the rendering equation (Kajiya 1986) with
+// next-event estimation and BSDF sampling combined by multiple importance
+// sampling (Veach & Guibas 1995, power heuristic), Russian roulette, and a
+// maximum depth counted as pbrt-v4 does (1 = direct lighting only).
+//
+// Every random number comes from the sampler, in the fixed layout of
+// sampling/sampler.h: at path vertex `depth` the sampler restarts at
+// dims::bounceBase(depth), so a bounce's dimensions never depend on what earlier
+// bounces drew (specular vertices still consume their light dimensions).
+#pragma once
+
+#include <limits>
+
+#include "render/render_scene.h"
+#include "render/sampling_routines.h"
+#include "sampling/sampler.h"
+
+namespace pathlab {
+
+struct IntegratorSettings {
+    int maxDepth = 8;
+    bool russianRoulette = true;
+    // Roulette starts when continuing from this vertex (0-based): the path then
+    // already has three segments.
+    static constexpr int kRouletteStartDepth = 2;
+};
+
+struct PathCounters {
+    uint64_t rays = 0;        // closest-hit rays: camera and bounce
+    uint64_t shadowRays = 0;  // visibility rays of next-event estimation
+};
+
+// Next-event estimation at a non-specular vertex: one light sample, weighted
+// against the BSDF's density for the same direction (power heuristic).
+inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
+                            const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
+                            Vec2f uLight, PathCounters& counters) {
+    const auto ls = scene.lights().sample(si.p, uChoice, uLight);
+    if (!ls) return Vec3f(0.0f);
+    const Vec3f wi = frame.toLocal(ls->wi);
+    const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
+    if (isBlack(f)) return Vec3f(0.0f);
+    ++counters.shadowRays;
+    const float tMax = std::isinf(ls->distance) ? ls->distance : ls->distance * (1 - 1e-4f);
+    if (scene.occluded(scene.offsetOrigin(si, ls->wi), ls->wi, tMax)) return Vec3f(0.0f);
+    const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
+    return f * ls->radiance * (weight / ls->pdf);
+}
+
+template <Sampler S>
+Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, S& sampler,
+                       Vec2i pixel, int sampleIndex, const IntegratorSettings& settings,
+                       PathCounters& counters) {
+    const LightSet& lights = scene.lights();
+    Vec3f L(0.0f), beta(1.0f), prevPoint;
+    bool specularBounce = false;
+    float prevBsdfPdf = 0;
+    for (int depth = 0;; ++depth) {
+        SurfaceInteraction si;
+        ++counters.rays;
+        const bool unweighted = depth == 0 || specularBounce;
+        if (!scene.intersect(origin, dir, &si)) {
+            const Vec3f env = lights.environment();
+            if (!isBlack(env))
+                L += beta * env *
+                     (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironment()));
+            break;
+        }
+        if (si.light >= 0) {
+            const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
+            if (!isBlack(Le))
+                L += beta * Le *
+                     (unweighted ? 1.0f
+                                 : powerHeuristic(prevBsdfPdf,
+                                                  lights.pdfAreaLight(si.light, prevPoint, si.p)));
+        }
+        if (depth == settings.maxDepth) break;
+
+        sampler.startPixelSample(pixel, sampleIndex, dims::bounceBase(depth));
+        const Bsdf bsdf = scene.bsdfAt(si);
+        const Frame frame(si.ns);
+        const Vec3f wo = frame.toLocal(-dir);
+        const float uChoice = sampler.get1D();
+        const Vec2f uLight = sampler.get2D();
+        if (!bsdf.isSpecular())
+            L += beta * estimateDirect(scene, si, frame, bsdf, wo, uChoice, uLight, counters);
+
+        const float uLobe = sampler.get1D();
+        const Vec2f uDirection = sampler.get2D();
+        const auto bs = bsdf.sample(wo, uLobe, uDirection);
+        if (!bs) break;
+        const Vec3f wi = frame.toWorld(bs->wi);
+        beta *= bs->weight();
+        specularBounce = bs->specular;
+        prevBsdfPdf = bs->pdf;
+        prevPoint = si.p;
+        origin = scene.offsetOrigin(si, wi);
+        dir = wi;
+
+        const float uRoulette = sampler.get1D();
+        if (settings.russianRoulette && depth >= IntegratorSettings::kRouletteStartDepth) {
+            const float q = std::max(0.0f, 1 - maxComponent(beta));
+            if (uRoulette < q) break;
+            beta *= 1 / (1 - q);
+        }
+        if (isBlack(beta)) break;
+    }
+    return L;
+}
+
+}  // namespace pathlab

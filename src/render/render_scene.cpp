@@ -1,0 +1,83 @@
+#include "render/render_scene.h"
+
+#include <limits>
+
+namespace pathlab {
+
+RenderScene::RenderScene(SceneDescription desc) : desc_(std::move(desc)) {
+    accel_ = std::make_unique<EmbreeAccel>(desc_);
+    const Vec3f lo = accel_->boundsMin(), hi = accel_->boundsMax();
+    const float radius = length(hi - lo) / 2;
+    const float extent = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
+                                   std::abs(hi.y), std::abs(hi.z), 1.0f});
+    // Float spacing near the scene's largest coordinate, with a safety factor.
+    epsilon_ = extent * 2e-5f;
+    lights_ = std::make_unique<LightSet>(desc_, std::isfinite(radius) ? radius : 1.0f);
+    triangleNormals_.resize(desc_.meshes.size());
+    for (size_t m = 0; m < desc_.meshes.size(); ++m) {
+        const Mesh& mesh = desc_.meshes[m];
+        auto& normals = triangleNormals_[m];
+        normals.resize(mesh.triangleCount());
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const Vec3f a = mesh.positions[mesh.indices[3 * t]];
+            const Vec3f b = mesh.positions[mesh.indices[3 * t + 1]];
+            const Vec3f c = mesh.positions[mesh.indices[3 * t + 2]];
+            const Vec3f n = cross(b - a, c - a);
+            const float len = length(n);
+            normals[t] = len > 0 ? n / len : Vec3f(0, 0, 1);
+        }
+    }
+}
+
+bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
+    RayHit hit;
+    if (!accel_->intersect(o, d, std::numeric_limits<float>::infinity(), &hit)) return false;
+    si->p = o + d * hit.t;
+    si->light = -1;
+    if (hit.geomId == accel_->sphereGeometryId()) {
+        const Sphere& s = desc_.spheres[hit.primId];
+        si->ng = si->ns = normalize(si->p - s.center);
+        si->uv = {0, 0};
+        si->material = s.material;
+        return true;
+    }
+    const Mesh& mesh = desc_.meshes[hit.geomId];
+    const unsigned* idx = &mesh.indices[3 * size_t(hit.primId)];
+    const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+    si->ng = triangleNormals_[hit.geomId][hit.primId];
+    si->ns = si->ng;
+    if (!mesh.normals.empty()) {
+        const Vec3f n =
+            mesh.normals[idx[0]] * b0 + mesh.normals[idx[1]] * b1 + mesh.normals[idx[2]] * b2;
+        const float len = length(n);
+        if (len > 0) si->ns = dot(n, si->ng) < 0 ? -n / len : n / len;
+    }
+    si->uv = {0, 0};
+    if (!mesh.uvs.empty()) {
+        const Vec2f t0 = mesh.uvs[idx[0]], t1 = mesh.uvs[idx[1]], t2 = mesh.uvs[idx[2]];
+        si->uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
+    }
+    si->material = mesh.material;
+    si->light = lights_->lightOfTriangle(hit.geomId, hit.primId);
+    return true;
+}
+
+Vec3f RenderScene::offsetOrigin(const SurfaceInteraction& si, Vec3f w) const {
+    const Vec3f offset = si.ng * epsilon_;
+    return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
+}
+
+Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si) const {
+    const Material& m = desc_.materials[size_t(si.material)];
+    switch (m.type) {
+        case MaterialType::Diffuse:
+            return Bsdf::diffuse(m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv)
+                                                : m.albedo);
+        case MaterialType::Mirror: return Bsdf::mirror(m.albedo);
+        case MaterialType::Dielectric: return Bsdf::dielectric(m.ior);
+        case MaterialType::Conductor: return Bsdf::conductor(m.eta, m.k, m.roughness);
+    }
+    return Bsdf::diffuse(m.albedo);
+}
+
+}  // namespace pathlab

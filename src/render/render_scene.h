@@ -1,0 +1,46 @@
+// A scene ready to render: the description, its Embree acceleration structure,
+// per-triangle normals and the light set. Immutable and shared by all threads.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "render/bsdf.h"
+#include "render/lights.h"
+#include "scene/embree_accel.h"
+#include "scene/scene.h"
+
+namespace pathlab {
+
+struct SurfaceInteraction {
+    Vec3f p;
+    Vec3f ng;  // unit geometric normal (mesh winding / sphere outward)
+    Vec3f ns;  // unit shading normal, on the same side as ng
+    Vec2f uv;
+    int material = 0;
+    int light = -1;  // area light index when the surface emits
+};
+
+class RenderScene {
+public:
+    explicit RenderScene(SceneDescription desc);
+
+    const SceneDescription& description() const { return desc_; }
+    const LightSet& lights() const { return *lights_; }
+    // Closest surface along o + t·d; false when the ray leaves the scene.
+    bool intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const;
+    bool occluded(Vec3f o, Vec3f d, float tMax) const { return accel_->occluded(o, d, tMax); }
+    // A ray origin nudged off the surface along the geometric normal, on the
+    // side of direction w — avoids self-intersection at this scene's scale.
+    Vec3f offsetOrigin(const SurfaceInteraction& si, Vec3f w) const;
+    Bsdf bsdfAt(const SurfaceInteraction& si) const;
+
+private:
+    SceneDescription desc_;
+    std::unique_ptr<EmbreeAccel> accel_;
+    std::unique_ptr<LightSet> lights_;
+    std::vector<std::vector<Vec3f>> triangleNormals_;  // per mesh, per triangle
+    float epsilon_ = 1e-4f;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,148 @@
+#include "render/renderer.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <variant>
+
+#include "core/error.h"
+#include "render/camera.h"
+#include "render/path_integrator.h"
+#include "sampling/registry.h"
+
+namespace pathlab {
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct Tile {
+    int x0, y0, x1, y1;
+};
+
+struct TileResult {
+    PathCounters counters;
+    uint64_t nonFinite = 0;
+};
+
+template <Sampler S>
+TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& sampler,
+                      const Tile& tile, const IntegratorSettings& integrator, RenderOutput& out) {
+    TileResult result;
+    const int spp = sampler.samplesPerPixel();
+    for (int y = tile.y0; y < tile.y1; ++y) {
+        for (int x = tile.x0; x < tile.x1; ++x) {
+            const Vec2i pixel{x, y};
+            double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
+            for (int i = 0; i < spp; ++i) {
+                sampler.startPixelSample(pixel, i, dims::kPixel);
+                const Vec2f u = sampler.getPixel2D();
+                const Vec3f dir = camera.direction(float(x) + u.x, float(y) + u.y);
+                Vec3f L = estimateRadiance(scene, camera.eye(), dir, sampler, pixel, i, integrator,
+                                           result.counters);
+                if (!isFinite(L)) {  // never let a NaN/Inf reach the image
+                    ++result.nonFinite;
+                    L = Vec3f(0.0f);
+                }
+                for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+            }
+            Vec3f mean, var;
+            for (int c = 0; c < 3; ++c) {
+                const double m = sum[c] / spp;
+                const double v = spp > 1 ? std::max(0.0, (sumSq[c] - spp * m * m) / (spp - 1)) : 0;
+                (c == 0 ? mean.x : c == 1 ? mean.y : mean.z) = float(m);
+                (c == 0 ? var.x : c == 1 ? var.y : var.z) = float(v / spp);
+            }
+            out.image.set(x, y, mean);
+            out.varianceOfMean.set(x, y, var);
+        }
+    }
+    return result;
+}
+
+class ProgressBar {
+public:
+    ProgressBar(bool enabled, size_t total) : enabled_(enabled && isatty(2)), total_(total) {}
+    void advance() {
+        const size_t done = ++done_;
+        if (!enabled_) return;
+        std::lock_guard<std::mutex> lock(mutex_);
+        const int percent = int(100 * done / total_);
+        if (percent == lastPercent_) return;
+        lastPercent_ = percent;
+        std::fprintf(stderr, "\r[%-40s] %3d%%", std::string(size_t(percent * 40 / 100), '=').c_str(),
+                     percent);
+        if (done == total_) std::fprintf(stderr, "\n");
+    }
+
+private:
+    bool enabled_;
+    size_t total_;
+    std::atomic<size_t> done_{0};
+    std::mutex mutex_;
+    int lastPercent_ = -1;
+};
+
+}  // namespace
+
+void validateRenderSettings(const RenderSettings& s) {
+    if (s.samplesPerPixel < 1 || s.samplesPerPixel > (1 << 24))
+        throw InputError("spp must be between 1 and 16777216, got " +
+                         std::to_string(s.samplesPerPixel));
+    if (s.resolution.x < 0 || s.resolution.y < 0 || s.resolution.x > 16384 ||
+        s.resolution.y > 16384 || (s.resolution.x == 0) != (s.resolution.y == 0))
+        throw InputError("image size must be between 1x1 and 16384x16384, got " +
+                         std::to_string(s.resolution.x) + "x" + std::to_string(s.resolution.y));
+    if (s.maxDepth < 0 || s.maxDepth > 1024)
+        throw InputError("max depth must be between 0 and 1024, got " + std::to_string(s.maxDepth));
+    if (s.threads < 0 || s.threads > 4096)
+        throw InputError("threads must be between 0 (all cores) and 4096, got " +
+                         std::to_string(s.threads));
+    makeSampler(s.sampler, SamplerConfig{});
+}
+
+RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
+    validateRenderSettings(settings);
+    const auto start = std::chrono::steady_clock::now();
+    const Vec2i res = settings.resolution.x > 0 ? settings.resolution
+                                                : scene.description().resolution;
+    const AnySampler prototype =
+        makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
+    const PinholeCamera camera(scene.description().camera, res);
+    const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette};
+
+    std::vector<Tile> tiles;
+    for (int y = 0; y < res.y; y += kTileSize)
+        for (int x = 0; x < res.x; x += kTileSize)
+            tiles.push_back({x, y, std::min(x + kTileSize, res.x), std::min(y + kTileSize, res.y)});
+
+    RenderOutput out{Image(res.x, res.y), Image(res.x, res.y), {}};
+    std::vector<TileResult> results(tiles.size());
+    ProgressBar progress(settings.progress, tiles.size());
+    std::optional<tbb::global_control> limit;
+    if (settings.threads > 0)
+        limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+        AnySampler sampler = prototype;
+        results[t] = std::visit(
+            [&](auto& s) { return renderTile(scene, camera, s, tiles[t], integrator, out); },
+            sampler);
+        progress.advance();
+    });
+
+    for (const TileResult& r : results) {
+        out.stats.rays += r.counters.rays;
+        out.stats.shadowRays += r.counters.shadowRays;
+        out.stats.nonFinite += r.nonFinite;
+    }
+    out.stats.paths = uint64_t(res.x) * uint64_t(res.y) * uint64_t(settings.samplesPerPixel);
+    out.stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,44 @@
+// The tile renderer: splits the image into 16×16 tiles rendered in parallel
+// with oneTBB. Each tile gets its own copy of the sampler; each pixel's samples
+// are summed in index order, so the image is bit-identical for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/image.h"
+#include "render/render_scene.h"
+
+namespace pathlab {
+
+struct RenderSettings {
+    std::string sampler = "independent";
+    int samplesPerPixel = 16;
+    uint64_t seed = 0;
+    Vec2i resolution{0, 0};  // 0×0: the scene's own
+    int maxDepth = 8;
+    bool russianRoulette = true;
+    int threads = 0;  // 0: all cores
+    bool progress = false;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    uint64_t paths = 0;
+    uint64_t rays = 0;        // camera + bounce rays
+    uint64_t shadowRays = 0;  // next-event visibility rays
+    uint64_t nonFinite = 0;   // samples that were NaN/Inf and were discarded
+};
+
+struct RenderOutput {
+    Image image;           // mean radiance per pixel
+    Image varianceOfMean;  // per pixel and channel: sample variance / spp
+    RenderStats stats;
+};
+
+// Throws InputError when a setting is out of range or the sampler is unknown.
+void validateRenderSettings(const RenderSettings& settings);
+
+RenderOutput render(const RenderScene& scene, const RenderSettings& settings);
+
+}  // namespace pathlab

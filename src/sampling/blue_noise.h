@@ -1,0 +1,108 @@
+// `blue-noise`: the presentation's Blue Noise Sampler, and the generator of
+// its texture.
+//
+// The texture is a dither array made by void-and-cluster (Ulichney 1993, "The
+// void-and-cluster method for dither array generation", Proc. SPIE 1913): a
+// Gaussian-filtered (σ = 1.5, toroidal) energy picks, one pixel at a time, the
+// tightest cluster to remove or the largest void to fill; the order in which
+// pixels are filled is their rank. Every rank 0..S²−1 appears exactly once, so
+// values (rank + ½)/S² are uniform, and any threshold of the array is a
+// blue-noise point set: its spectrum has little energy at low frequencies.
+// Generation takes about a second for 128²; the texture is cached in
+// cacheDirectory() (written atomically, checked when read) and shared.
+//
+// Lookup (the presentation's BlueNoiseRand): dimension d of sample i at pixel
+// (x, y) reads texel
+//   row = (y + D·100937 + i·1091 + depth·133337) mod S,
+//   col = (x + D·99523  + i·2399 + depth·2549)   mod S,
+// where depth is the path vertex the dimension belongs to (0 for the pixel
+// dimensions and the first vertex) and D the dimension's place within its
+// block (0,1 for the pixel, 2..8 within a vertex block) — see sampler.h.
+// The seed adds a toroidal offset to the lookup and a Cranley–Patterson
+// rotation (Cranley & Patterson 1976) per dimension; the rotation makes every
+// dimension, and every pair, exactly uniform over seeds — so the estimator is
+// unbiased — while each dimension keeps the texture's spatial blue-noise
+// spectrum. Any number of dimensions; values repeat only through the texture.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "core/hash.h"
+#include "sampling/lowdiscrepancy.h"
+#include "sampling/sampler.h"
+
+namespace pathlab {
+
+struct BlueNoiseTexture {
+    int size = 0;
+    std::vector<uint32_t> rank;  // row-major, a permutation of 0..size²−1
+    // The value of a texel as a 32-bit fixed-point fraction: (rank + ½) / size².
+    std::vector<uint32_t> fixedPoint;
+    void computeValues();
+    float value(int x, int y) const { return fixedPointToFloat(fixedPoint[size_t(y) * size + x]); }
+};
+
+// Void-and-cluster on a size × size torus; deterministic for a given seed.
+BlueNoiseTexture generateBlueNoiseTexture(int size, uint64_t seed, double sigma = 1.5);
+
+// Reads `file` if it holds a valid texture of this size, else generates one
+// and writes it atomically (a temporary file renamed into place).
+std::shared_ptr<const BlueNoiseTexture> loadOrCreateBlueNoiseTexture(
+    const std::filesystem::path& file, int size, uint64_t seed);
+
+inline constexpr int kBlueNoiseTextureSize = 128;
+// The process-wide texture: cacheDirectory()/blue-noise-vc-128.bin.
+std::shared_ptr<const BlueNoiseTexture> defaultBlueNoiseTexture();
+
+class BlueNoiseSampler {
+public:
+    explicit BlueNoiseSampler(const SamplerConfig& c)
+        : spp_(c.samplesPerPixel), seed_(c.seed), texture_(defaultBlueNoiseTexture()) {
+        const uint64_t h = hashValues(c.seed, 0x424eu);
+        offsetX_ = static_cast<uint32_t>(h % uint64_t(texture_->size));
+        offsetY_ = static_cast<uint32_t>((h >> 32) % uint64_t(texture_->size));
+    }
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        pixel_ = p;
+        index_ = static_cast<uint64_t>(index);
+        dimension_ = dim;
+    }
+    float get1D() { return sampleDimension(dimension_++); }
+    Vec2f get2D() {
+        const int d = dimension_;
+        dimension_ += 2;
+        return {sampleDimension(d), sampleDimension(d + 1)};
+    }
+    Vec2f getPixel2D() { return get2D(); }
+
+private:
+    float sampleDimension(int d) const {
+        const uint64_t size = uint64_t(texture_->size);
+        const int vertex = dims::depthOfDimension(d);
+        const uint64_t depth = uint64_t(vertex < 0 ? 0 : vertex);
+        const uint64_t inBlock =
+            d < dims::kFirstBounce ? uint64_t(d)
+                                   : uint64_t(dims::kFirstBounce +
+                                              (d - dims::kFirstBounce) % dims::kDimsPerBounce);
+        const uint64_t x = uint64_t(uint32_t(pixel_.x)) + offsetX_;
+        const uint64_t y = uint64_t(uint32_t(pixel_.y)) + offsetY_;
+        const uint64_t row = (y + inBlock * 100937 + index_ * 1091 + depth * 133337) % size;
+        const uint64_t col = (x + inBlock * 99523 + index_ * 2399 + depth * 2549) % size;
+        const uint32_t rotation = foldSeed(hashValues(seed_, d, 0x4350u));
+        return fixedPointToFloat(texture_->fixedPoint[row * size + col] + rotation);
+    }
+
+    int spp_;
+    uint64_t seed_;
+    std::shared_ptr<const BlueNoiseTexture> texture_;
+    uint32_t offsetX_ = 0, offsetY_ = 0;
+    Vec2i pixel_;
+    uint64_t index_ = 0;
+    int dimension_ = 0;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,117 @@
+#include "sampling/halton.h"
+
+#include "core/rng.h"
+
+namespace pathlab {
+namespace {
+
+// Extended Euclid: the inverse of a modulo n (a and n coprime).
+uint64_t multiplicativeInverse(int64_t a, int64_t n) {
+    int64_t r0 = n, r1 = a % n, t0 = 0, t1 = 1;
+    while (r1 != 0) {
+        const int64_t q = r0 / r1;
+        const int64_t r2 = r0 - q * r1, t2 = t0 - q * t1;
+        r0 = r1, r1 = r2, t0 = t1, t1 = t2;
+    }
+    return static_cast<uint64_t>(((t0 % n) + n) % n);
+}
+
+}  // namespace
+
+HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed) {
+    const int* primes = primeTable();
+    offset.resize(kPrimeTableSize);
+    size_t total = 0;
+    for (int d = 0; d < kPrimeTableSize; ++d) {
+        offset[d] = static_cast<uint32_t>(total);
+        total += primes[d];
+    }
+    table.resize(total);
+    shifts.resize(size_t(kPrimeTableSize) * kMaxDigits);
+    for (int d = 0; d < kPrimeTableSize; ++d) {
+        // Fisher–Yates with a PCG32 stream per base: the presentation's "array
+        // the size of the base, each digit mapped to a randomly chosen digit".
+        const int base = primes[d];
+        uint16_t* perm = table.data() + offset[d];
+        for (int i = 0; i < base; ++i) perm[i] = static_cast<uint16_t>(i);
+        Pcg32 rng(hashValues(seed, base, 0x5244u), 0);
+        for (int i = base - 1; i > 0; --i) std::swap(perm[i], perm[rng.nextUInt(i + 1)]);
+        for (int k = 0; k < kMaxDigits; ++k)
+            shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
+    }
+}
+
+HaltonImageMapping::HaltonImageMapping(Vec2i resolution) {
+    const int bases[2] = {2, 3};
+    const int extent[2] = {std::max(1, resolution.x), std::max(1, resolution.y)};
+    for (int i = 0; i < 2; ++i) {
+        while (baseScales[i] < extent[i]) {
+            baseScales[i] *= bases[i];
+            ++baseExponents[i];
+        }
+    }
+    // Pixel (x, y) needs an index h with h ≡ Φ_2^{-1}(x) (mod 2^j) and
+    // h ≡ Φ_3^{-1}(y) (mod 3^k); by the Chinese remainder theorem
+    // h = Σ_i r_i · (M / m_i) · ((M / m_i)^{-1} mod m_i) mod M.
+    multInverse[0] = baseScales[0] > 1 ? multiplicativeInverse(baseScales[1], baseScales[0]) : 0;
+    multInverse[1] = baseScales[1] > 1 ? multiplicativeInverse(baseScales[0], baseScales[1]) : 0;
+}
+
+uint64_t HaltonImageMapping::index(Vec2i p, int sampleIndex) const {
+    const uint64_t stride = uint64_t(baseScales[0]) * uint64_t(baseScales[1]);
+    uint64_t h = 0;
+    if (stride > 1) {
+        const int pm[2] = {((p.x % baseScales[0]) + baseScales[0]) % baseScales[0],
+                           ((p.y % baseScales[1]) + baseScales[1]) % baseScales[1]};
+        for (int i = 0; i < 2; ++i) {
+            if (baseScales[i] == 1) continue;
+            const uint64_t residue = inverseRadicalInverse(pm[i], i == 0 ? 2 : 3, baseExponents[i]);
+            h += residue * (stride / baseScales[i]) % stride * multInverse[i] % stride;
+        }
+        h %= stride;
+    }
+    return h + uint64_t(sampleIndex) * stride;
+}
+
+float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+                                         const uint16_t* shifts) {
+    // All digits down to float precision are permuted — including the zero
+    // digits past a's leading digit — so the map x → scrambled(x) is a
+    // bijection of the b-adic intervals at every level (unlike stopping at the
+    // last non-zero digit, which would leave point 0 and short indices fixed).
+    const int digits = floatDigitCount(base);
+    const double invBase = 1.0 / base;
+    double invBaseM = 1.0;
+    uint64_t reversed = 0;
+    for (int k = 0; k < digits; ++k) {
+        const uint64_t next = a / base;
+        reversed = reversed * base + permutation[(a - next * base + shifts[k]) % base];
+        invBaseM *= invBase;
+        a = next;
+    }
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
+                    kOneMinusEpsilon);
+}
+
+float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+                                  uint64_t dimensionHash) {
+    // The permutation of digit k is chosen by hashing the digits above it (the
+    // node of Owen's tree the point lies in): points sharing the first k digits
+    // share the permutation, so b-adic strata map to b-adic strata.
+    const int digits = floatDigitCount(base);
+    const double invBase = 1.0 / base;
+    double invBaseM = 1.0;
+    uint64_t reversed = 0;
+    for (int k = 0; k < digits; ++k) {
+        const uint64_t next = a / base;
+        const uint64_t digit = a - next * base;
+        const uint64_t node = mixBits(dimensionHash ^ (reversed * 0x9e3779b97f4a7c15ULL + k));
+        reversed = reversed * base + permutation[(digit + node % base) % base];
+        invBaseM *= invBase;
+        a = next;
+    }
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
+                    kOneMinusEpsilon);
+}
+
+}  // namespace pathlab

@@ -1,0 +1,139 @@
+// The presentation's three Halton samplers: `halton`, `halton-rd`, `halton-owen`.
+//
+// Dimension d (past the two pixel dimensions) is the radical inverse of the
+// sample's Halton index in the d-th prime base (Halton 1960). Image-plane
+// mapping follows pbrt-v4's HaltonSampler (Pharr, Jakob & Humphreys,
+// "Physically Based Rendering", 4th ed., §8.6): the pixel dimensions 0 and 1
+// cover the whole image — base 2 scaled by 2^j ≥ width, base 3 by 3^k ≥ height —
+// so the Halton indices that fall into pixel p are h_p + i · 2^j 3^k for a
+// per-pixel offset h_p found with the Chinese remainder theorem. Every pixel
+// gets its own indices (no two pixels share a pattern) and its samples are a
+// stratified subsequence of one global sequence. Unlike pbrt-v4 the image scale
+// is not capped at 128 pixels, so pixels never repeat each other's indices.
+//
+// Randomisation (the presentation's code, generalised so it is a bijection of
+// b-adic intervals — see docs/samplers.md):
+//   None         — the plain radical inverse.
+//   RandomDigit  — one seeded random permutation π_b of {0..b−1} per base, as
+//                  in the presentation, applied to every digit down to float
+//                  precision (trailing zero digits included, so the map is a
+//                  bijection of the b-adic intervals at every level). Digit k
+//                  becomes π_b((d_k + s_k) mod b) with a seeded shift s_k per
+//                  base and digit position: with π_b alone, equal digits stay
+//                  equal, so a point is not uniformly distributed over seeds and
+//                  the estimator is biased (in base 2 the only "scramble" would
+//                  be x ↦ 1 − x); the shift makes every digit independent and
+//                  uniform — a random digital shift (Matoušek 1998) composed
+//                  with the presentation's permutation.
+//   Owen         — nested scrambling: digit k becomes π_b((d_k + r) mod b)
+//                  where the rotation r is a hash of (seed, dimension, k and all
+//                  higher, already scrambled, digits) — Owen 1995's tree of
+//                  random permutations realised by hashing, as the presentation
+//                  and pbrt-v4's OwenScrambledRadicalInverse do.
+// Past the kPrimeTableSize (1000) prime bases, dimensions wrap back to 2, as in
+// pbrt-v4; the Owen variant hashes the unwrapped dimension, so wrapped
+// dimensions still get fresh scrambles there.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "sampling/lowdiscrepancy.h"
+#include "sampling/sampler.h"
+
+namespace pathlab {
+
+enum class HaltonScrambling { None, RandomDigit, Owen };
+
+// Seeded digit permutations for every prime base (immutable, shared by copies).
+struct HaltonDigitPermutations {
+    static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 25
+    std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
+    std::vector<uint16_t> table;
+    std::vector<uint16_t> shifts;  // kMaxDigits per base: the per-position digit shifts
+    explicit HaltonDigitPermutations(uint64_t seed);
+    const uint16_t* forDimension(int d) const { return table.data() + offset[d]; }
+    const uint16_t* shiftsForDimension(int d) const { return shifts.data() + d * kMaxDigits; }
+};
+
+// The image-plane mapping shared by the three variants.
+struct HaltonImageMapping {
+    int baseScales[2] = {1, 1};     // 2^j, 3^k
+    int baseExponents[2] = {0, 0};  // j, k
+    uint64_t multInverse[2] = {0, 0};
+    explicit HaltonImageMapping(Vec2i resolution);
+    // The Halton index of sample `index` of pixel p.
+    uint64_t index(Vec2i p, int sampleIndex) const;
+};
+
+template <HaltonScrambling kScrambling>
+class HaltonSamplerT {
+public:
+    explicit HaltonSamplerT(const SamplerConfig& c);
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        haltonIndex_ = mapping_.index(p, index);
+        dimension_ = std::max(2, dim);
+    }
+    float get1D() { return sampleDimension(dimension_++); }
+    Vec2f get2D() {
+        const int d = dimension_;
+        dimension_ += 2;
+        return {sampleDimension(d), sampleDimension(d + 1)};
+    }
+    // The pixel dimensions are the unscrambled digits below the image-scale
+    // digits: scrambling them would move samples into other pixels.
+    Vec2f getPixel2D() {
+        return {radicalInverse(2, haltonIndex_ >> mapping_.baseExponents[0]),
+                radicalInverse(3, haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
+    }
+
+    // The value of dimension d of Halton index a (exposed for tests and tools).
+    float sampleDimension(int d) const;
+
+private:
+    int spp_;
+    uint64_t seed_;
+    HaltonImageMapping mapping_;
+    std::shared_ptr<const HaltonDigitPermutations> permutations_;
+    const int* primes_;
+    uint64_t haltonIndex_ = 0;
+    int dimension_ = 0;
+};
+
+using HaltonSampler = HaltonSamplerT<HaltonScrambling::None>;
+using RandomDigitHaltonSampler = HaltonSamplerT<HaltonScrambling::RandomDigit>;
+using OwenHaltonSampler = HaltonSamplerT<HaltonScrambling::Owen>;
+
+// Digit-level helpers, exposed for tests.
+float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+                                         const uint16_t* shifts);
+float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+                                  uint64_t dimensionHash);
+
+template <HaltonScrambling kScrambling>
+HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
+    : spp_(c.samplesPerPixel), seed_(c.seed), mapping_(c.resolution), primes_(primeTable()) {
+    if constexpr (kScrambling != HaltonScrambling::None)
+        permutations_ = std::make_shared<const HaltonDigitPermutations>(c.seed);
+}
+
+template <HaltonScrambling kScrambling>
+float HaltonSamplerT<kScrambling>::sampleDimension(int d) const {
+    const int wrapped = d < kPrimeTableSize ? d : 2 + (d - 2) % (kPrimeTableSize - 2);
+    const int base = primes_[wrapped];
+    if constexpr (kScrambling == HaltonScrambling::None) {
+        return radicalInverse(base, haltonIndex_);
+    } else if constexpr (kScrambling == HaltonScrambling::RandomDigit) {
+        return randomDigitScrambledRadicalInverse(base, haltonIndex_,
+                                                  permutations_->forDimension(wrapped),
+                                                  permutations_->shiftsForDimension(wrapped));
+    } else {
+        return owenScrambledRadicalInverse(base, haltonIndex_,
+                                           permutations_->forDimension(wrapped),
+                                           hashValues(seed_, d, 0x4f57454eu));
+    }
+}
+
+}  // namespace pathlab

@@ -1,0 +1,93 @@
+#include "sampling/lowdiscrepancy.h"
+
+#include <array>
+#include <boost/random/detail/sobol_table.hpp>
+#include <vector>
+
+namespace pathlab {
+
+const int* primeTable() {
+    static const std::array<int, kPrimeTableSize> primes = [] {
+        std::array<int, kPrimeTableSize> p{};
+        int count = 0;
+        for (int candidate = 2; count < kPrimeTableSize; ++candidate) {
+            bool prime = true;
+            for (int i = 0; i < count && p[i] * p[i] <= candidate; ++i)
+                if (candidate % p[i] == 0) {
+                    prime = false;
+                    break;
+                }
+            if (prime) p[count++] = candidate;
+        }
+        return p;
+    }();
+    return primes.data();
+}
+
+float radicalInverse(int base, uint64_t a) {
+    // Accumulate the mirrored digits as an integer and scale once at the end,
+    // stopping before the integer could overflow (digits past that point are
+    // far below float precision).
+    const uint64_t limit = ~uint64_t(0) / base - base;
+    const double invBase = 1.0 / base;
+    double invBaseM = 1.0;
+    uint64_t reversed = 0;
+    while (a != 0 && reversed < limit) {
+        const uint64_t next = a / base;
+        reversed = reversed * base + (a - next * base);
+        invBaseM *= invBase;
+        a = next;
+    }
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
+                    kOneMinusEpsilon);
+}
+
+int floatDigitCount(int base) {
+    // Digits whose weight b^-k still reaches the float mantissa (2^-24).
+    int digits = 0;
+    double weight = 1.0;
+    while (weight * (base - 1) >= 0x1p-25) {
+        weight /= base;
+        ++digits;
+    }
+    return digits;
+}
+
+const uint32_t* sobolMatrices() {
+    static const std::vector<uint32_t> matrices = [] {
+        using Table = boost::random::detail::qrng_tables::sobol;
+        static_assert(Table::max_dimension == kSobolDimensions);
+        std::vector<uint32_t> c(size_t(kSobolDimensions) * kSobolMatrixColumns);
+        // m_j: the odd integers < 2^{j+1} whose binary expansion m_j / 2^{j+1}
+        // is direction number v_j (Bratley & Fox 1988, §2).
+        std::array<uint64_t, kSobolMatrixColumns> m{};
+        for (int d = 0; d < kSobolDimensions; ++d) {
+            if (d == 0) {
+                m.fill(1);  // the van der Corput sequence: C_0 = bit reversal
+            } else {
+                // Primitive polynomial x^s + a_1 x^{s-1} + … + a_{s-1} x + 1, stored
+                // with the coefficient of x^k in bit k.
+                const unsigned poly = Table::polynomial(d - 1);
+                int s = 0;
+                while ((poly >> (s + 1)) != 0) ++s;
+                for (int j = 0; j < s; ++j) m[j] = Table::minit(d - 1, j);
+                // m_j = 2 a_1 m_{j-1} ⊕ 4 a_2 m_{j-2} ⊕ … ⊕ 2^s m_{j-s} ⊕ m_{j-s}.
+                for (int j = s; j < kSobolMatrixColumns; ++j) {
+                    uint64_t v = m[j - s];
+                    for (int k = 0; k < s; ++k)
+                        if ((poly >> k) & 1) v ^= m[j - s + k] << (s - k);
+                    m[j] = v;
+                }
+            }
+            // Column j as a 32-bit fraction: m_j · 2^{-(j+1)} truncated to 32 bits.
+            for (int j = 0; j < kSobolMatrixColumns; ++j)
+                c[size_t(d) * kSobolMatrixColumns + j] =
+                    j < 32 ? static_cast<uint32_t>(m[j] << (31 - j))
+                           : static_cast<uint32_t>(m[j] >> (j - 31));
+        }
+        return c;
+    }();
+    return matrices.data();
+}
+
+}  // namespace pathlab

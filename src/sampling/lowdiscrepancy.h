@@ -1,0 +1,160 @@
+// Building blocks of the low-discrepancy samplers: radical inverses (Halton),
+// Sobol' generator matrices, binary scramblers (random digital shift, hash-based
+// Owen scrambling), seeded permutations of [0, n) and Morton codes.
+//
+// Everything here is a pure function of its arguments, so samplers stay
+// deterministic whatever order pixels are rendered in.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "core/hash.h"
+#include "core/math.h"
+
+namespace pathlab {
+
+// ---------------------------------------------------------------------------
+// Primes: the bases of the Halton sequence, dimension d using the d-th prime.
+inline constexpr int kPrimeTableSize = 1000;  // 2, 3, 5, …, 7919
+const int* primeTable();                       // kPrimeTableSize entries
+
+// ---------------------------------------------------------------------------
+// Bits.
+constexpr uint32_t reverseBits32(uint32_t v) {
+    v = (v << 16) | (v >> 16);
+    v = ((v & 0x00ff00ffu) << 8) | ((v & 0xff00ff00u) >> 8);
+    v = ((v & 0x0f0f0f0fu) << 4) | ((v & 0xf0f0f0f0u) >> 4);
+    v = ((v & 0x33333333u) << 2) | ((v & 0xccccccccu) >> 2);
+    v = ((v & 0x55555555u) << 1) | ((v & 0xaaaaaaaau) >> 1);
+    return v;
+}
+
+// A 32-bit fixed-point fraction (value · 2^-32) as a float in [0, 1).
+inline float fixedPointToFloat(uint32_t v) {
+    const float f = static_cast<float>(v) * 0x1p-32f;
+    return f < kOneMinusEpsilon ? f : kOneMinusEpsilon;
+}
+
+// Interleaves the bits of x and y (x in the even bits): the Morton (Z-order)
+// index of a pixel, used by ZSobol to walk the image along a space-filling curve.
+constexpr uint64_t spreadBits32(uint32_t v) {
+    uint64_t x = v;
+    x = (x | (x << 16)) & 0x0000ffff0000ffffULL;
+    x = (x | (x << 8)) & 0x00ff00ff00ff00ffULL;
+    x = (x | (x << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+    x = (x | (x << 2)) & 0x3333333333333333ULL;
+    x = (x | (x << 1)) & 0x5555555555555555ULL;
+    return x;
+}
+constexpr uint64_t encodeMorton2(uint32_t x, uint32_t y) {
+    return spreadBits32(x) | (spreadBits32(y) << 1);
+}
+
+constexpr int log2Ceil(uint64_t n) {
+    int k = 0;
+    while ((uint64_t(1) << k) < n) ++k;
+    return k;
+}
+
+// ---------------------------------------------------------------------------
+// Halton: the radical inverse Φ_b(a) = Σ d_k b^{-k-1} mirrors the base-b
+// digits d_k of a about the radix point (Halton 1960).
+float radicalInverse(int base, uint64_t a);
+
+// Number of base-b digits that still change a float in [0,1): digits beyond it
+// are lost to rounding, so scramblers stop there.
+int floatDigitCount(int base);
+
+// The index whose first `digits` base-b digits, mirrored, give `inverse`:
+// Φ_b^{-1} restricted to `digits` digits (used for Halton's image-plane mapping).
+constexpr uint64_t inverseRadicalInverse(uint64_t inverse, int base, int digits) {
+    uint64_t index = 0;
+    for (int i = 0; i < digits; ++i) {
+        index = index * base + inverse % base;
+        inverse /= base;
+    }
+    return index;
+}
+
+// ---------------------------------------------------------------------------
+// Sobol' (Sobol' 1967) with the Joe–Kuo direction numbers ("Constructing Sobol
+// sequences with better two-dimensional projections", SIAM J. Sci. Comput.
+// 2008) as shipped in Boost (boost/random/detail/sobol_table.hpp: 3667
+// dimensions). Dimension d of sample a is the GF(2) matrix–vector product
+// C_d · a, written as the XOR of the columns selected by a's set bits.
+inline constexpr int kSobolDimensions = 3667;
+inline constexpr int kSobolMatrixColumns = 64;  // indices up to 2^64
+// Column-major: column j of dimension d is sobolMatrices()[d * 64 + j], a 32-bit
+// fraction whose most significant bit is 1/2.
+const uint32_t* sobolMatrices();
+
+inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {
+    const uint32_t* column = matrices + dimension * kSobolMatrixColumns;
+    uint32_t v = 0;
+    for (; a != 0; a >>= 1, ++column)
+        if (a & 1) v ^= *column;
+    return v;
+}
+
+// ---------------------------------------------------------------------------
+// Binary scramblers applied to a 32-bit fraction.
+
+// Random digital shift (XOR scrambling): flips the same bits of every point.
+// Preserves every elementary-interval stratification of a (t,m,s)-net.
+constexpr uint32_t xorScramble(uint32_t v, uint32_t seed) { return v ^ seed; }
+
+// Hash-based Owen scrambling (Laine & Karras 2011, "Stratified sampling for
+// stochastic transparency"; Burley 2020, "Practical Hash-based Owen
+// Scrambling", JCGT 9(4)). A permutation of the bits of the *reversed* value in
+// which every bit is changed only by bits below it — i.e., in the unreversed
+// value, a bit's flip depends only on the more significant bits: exactly
+// Owen's nested scrambling, with a hash in place of a tree of random flips.
+// The multiply constants are Vegdahl's improved set ("Building a Better LK
+// Hash", 2021), whose avalanche from low to high bits is much closer to ideal
+// than the original Laine–Karras constants.
+constexpr uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+constexpr uint32_t owenScramble(uint32_t v, uint32_t seed) {
+    return reverseBits32(laineKarrasPermutation(reverseBits32(v), seed));
+}
+
+// ---------------------------------------------------------------------------
+// permutationElement(i, n, seed): the image of i under a pseudo-random
+// permutation of [0, n) chosen by seed, without storing it. A seeded bijection
+// on the smallest power-of-two range covering n (odd multiplies and xorshifts
+// are invertible modulo 2^w) is iterated until it lands inside [0, n) — "cycle
+// walking", as in Kensler 2013, "Correlated Multi-Jittered Sampling".
+inline uint32_t permutationElement(uint32_t i, uint32_t n, uint64_t seed) {
+    if (n <= 1) return 0;
+    uint32_t mask = n - 1;
+    mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8,
+        mask |= mask >> 16;
+    const int bits = 32 - __builtin_clz(mask);
+    const int shift = bits / 2 + 1;
+    const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
+    do {
+        i ^= s0;
+        i = (i * 0xe170893du) & mask;
+        i ^= i >> shift;
+        i = (i + s1) & mask;
+        i = (i * (0x0929eb3fu | 1u)) & mask;
+        i ^= (i & mask) >> (shift > 1 ? shift - 1 : 1);
+        i = (i * (s1 | 1u)) & mask;
+        i ^= i >> shift;
+        i = (i * 0x6935fa69u) & mask;
+        i ^= s0 & mask;
+    } while (i >= n);
+    return i;
+}
+
+// 32-bit seed from a 64-bit hash (the two halves folded).
+constexpr uint32_t foldSeed(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
+
+}  // namespace pathlab

@@ -1,0 +1,69 @@
+// The sampler interface: every random decision of the renderer is drawn here.
+//
+// Modelled on pbrt-v4's Sampler (src/pbrt/samplers.h): a small value type per
+// strategy with the same four calls; the integrator is a template over it, so
+// drawing a sample is an inlined call, never a virtual one. A sampler is
+// copied per tile; anything large it needs (tables, textures) is shared and
+// immutable.
+//
+// Determinism: a sampler's output is a pure function of (pixel, sample index,
+// dimension, seed) — never of the order in which pixels are rendered — so an
+// image is bit-identical whatever the thread count.
+#pragma once
+
+#include <concepts>
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace pathlab {
+
+// The dimension layout, fixed for every sampler (see docs/dimensions.md).
+// startPixelSample(pixel, index, 0) is followed by getPixel2D() (dims 0,1), then
+// one block of kDimsPerBounce dimensions per path vertex, in this order:
+//   +0      light choice (1D)           — which light next-event estimation samples
+//   +1,+2   point on that light (2D)
+//   +3      BSDF lobe choice (1D)       — e.g. reflect or refract at glass
+//   +4,+5   BSDF direction (2D)
+//   +6      Russian roulette (1D)
+// A sampler whose native dimension count is smaller pads the rest (each
+// sampler documents how).
+namespace dims {
+inline constexpr int kPixel = 0;
+inline constexpr int kFirstBounce = 2;
+inline constexpr int kLightChoice = 0;
+inline constexpr int kLightPoint = 1;
+inline constexpr int kBsdfLobe = 3;
+inline constexpr int kBsdfDirection = 4;
+inline constexpr int kRoulette = 6;
+inline constexpr int kDimsPerBounce = 7;
+// First dimension of the block of path vertex `depth` (0 = the camera ray's hit).
+constexpr int bounceBase(int depth) { return kFirstBounce + depth * kDimsPerBounce; }
+// The path depth a dimension belongs to (-1 for the pixel dimensions).
+constexpr int depthOfDimension(int dim) {
+    return dim < kFirstBounce ? -1 : (dim - kFirstBounce) / kDimsPerBounce;
+}
+}  // namespace dims
+
+// What every sampler is constructed from.
+struct SamplerConfig {
+    int samplesPerPixel = 1;
+    uint64_t seed = 0;
+    Vec2i resolution{1, 1};
+};
+
+// The interface, as a concept (pbrt-v4 names, camelCase):
+//   startPixelSample(pixel, index, dim) — start sample `index` of `pixel` at dimension `dim`
+//   get1D(), get2D()                     — the next one or two dimensions, in [0,1)
+//   getPixel2D()                         — dimensions 0 and 1: the position inside the pixel
+//   samplesPerPixel()
+template <typename S>
+concept Sampler = std::copy_constructible<S> && requires(S s, Vec2i p, int i) {
+    { s.samplesPerPixel() } -> std::convertible_to<int>;
+    s.startPixelSample(p, i, i);
+    { s.get1D() } -> std::same_as<float>;
+    { s.get2D() } -> std::same_as<Vec2f>;
+    { s.getPixel2D() } -> std::same_as<Vec2f>;
+};
+
+}  // namespace pathlab

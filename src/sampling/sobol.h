@@ -1,0 +1,183 @@
+// The Sobol' samplers: `sobol`, `sobol-xor`, `sobol-owen` and `zsobol`.
+//
+// `sobol` / `sobol-xor` — one global Sobol' sequence over the whole image
+// (pbrt-v4's SobolSampler). Dimensions 0 and 1 cover the image scaled to the
+// next power of two 2^m ≥ max(width, height); the first 2^{2m} points of a
+// (0,2)-sequence put exactly one point in every 2^-m × 2^-m square, so the
+// indices whose first two coordinates fall into pixel p are found by solving a
+// 2m × 2m linear system over GF(2) once (SobolImageMapping). Every other
+// dimension d is Sobol' dimension d of the same index, up to the 3667
+// dimensions of the Joe–Kuo table in Boost; past them dimensions wrap to 2.
+// Sample indices follow the Gray code (Antonov & Saleev 1979), which is the
+// order in which the sequence is usually listed: (0,0), (.5,.5), (.75,.25),
+// (.25,.75), … — any 2^k consecutive aligned Gray indices are the same set.
+// `sobol-xor` applies a random digital shift seeded per dimension.
+//
+// `sobol-owen` — Burley 2020 ("Practical Hash-based Owen Scrambling", JCGT
+// 9(4), §4 "padding"): every 2D draw is the first two Sobol' dimensions — a
+// (0,2)-sequence — at a shuffled index, Owen-scrambled with seeds hashed from
+// (pixel, dimension, seed). The index shuffle is itself a nested (Owen)
+// scramble of the index bits, which maps aligned blocks of 2^k indices to
+// aligned blocks, so any power-of-two prefix of a pixel's samples is still a
+// (0,k,2)-net in every pair. Dimension pairs are independent of each other:
+// "padding" (Kollig & Keller 2002) with unbounded dimensions.
+//
+// `zsobol` — Ahmed & Wonka 2020, "Screen-Space Blue-Noise Diffusion of Monte
+// Carlo Sampling Error via Hierarchical Ordering of Pixels" (SIGGRAPH Asia),
+// as pbrt-v4's ZSobolSampler: the sample's global index is the pixel's Morton
+// code followed by the sample index, and its base-4 digits are permuted from
+// the most significant down, each digit's permutation chosen by hashing the
+// digits above it and the dimension. Pixels close on the Z curve therefore take
+// consecutive, well-stratified Sobol' points, so their errors are negatively
+// correlated — the error image is blue noise. Each 2D draw uses Sobol'
+// dimensions 0 and 1 with Owen scrambling seeded per dimension.
+#pragma once
+
+#include <memory>
+
+#include "sampling/lowdiscrepancy.h"
+#include "sampling/sampler.h"
+
+namespace pathlab {
+
+// Which indices of a global Sobol' sequence fall into which pixel.
+struct SobolImageMapping {
+    int log2Scale = 0;              // m
+    uint64_t inverse[32] = {};      // columns of the inverse of the 2m × 2m map
+    explicit SobolImageMapping(const uint32_t* matrices, Vec2i resolution);
+    // The Gray-coded Sobol' index of sample `frame` of pixel p.
+    uint64_t index(const uint32_t* matrices, Vec2i p, uint64_t frame) const;
+};
+
+enum class SobolScrambling { None, Xor };
+
+template <SobolScrambling kScrambling>
+class GlobalSobolSamplerT {
+public:
+    explicit GlobalSobolSamplerT(const SamplerConfig& c)
+        : spp_(c.samplesPerPixel),
+          seed_(c.seed),
+          matrices_(sobolMatrices()),
+          mapping_(std::make_shared<const SobolImageMapping>(matrices_, c.resolution)) {}
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        pixel_ = p;
+        sobolIndex_ = mapping_->index(matrices_, p, uint64_t(index));
+        dimension_ = std::max(2, dim);
+    }
+    float get1D() { return sampleDimension(dimension_++); }
+    Vec2f get2D() {
+        const int d = dimension_;
+        dimension_ += 2;
+        return {sampleDimension(d), sampleDimension(d + 1)};
+    }
+    // The bits of dimensions 0 and 1 below the image-scale bits: the position
+    // inside the pixel. Left unscrambled (scrambling them would move samples
+    // to other pixels), as in pbrt-v4.
+    Vec2f getPixel2D() {
+        const int m = mapping_->log2Scale;
+        const uint32_t x = sobolBits(matrices_, sobolIndex_, 0);
+        const uint32_t y = sobolBits(matrices_, sobolIndex_, 1);
+        return {fixedPointToFloat(m == 0 ? x : x << m), fixedPointToFloat(m == 0 ? y : y << m)};
+    }
+
+private:
+    float sampleDimension(int d) const {
+        const int wrapped = d < kSobolDimensions ? d : 2 + (d - 2) % (kSobolDimensions - 2);
+        uint32_t v = sobolBits(matrices_, sobolIndex_, wrapped);
+        if constexpr (kScrambling == SobolScrambling::Xor)
+            v = xorScramble(v, foldSeed(hashValues(d, seed_, 0x584f52u)));
+        return fixedPointToFloat(v);
+    }
+
+    int spp_;
+    uint64_t seed_;
+    const uint32_t* matrices_;
+    std::shared_ptr<const SobolImageMapping> mapping_;
+    Vec2i pixel_;
+    uint64_t sobolIndex_ = 0;
+    int dimension_ = 0;
+};
+
+using SobolSampler = GlobalSobolSamplerT<SobolScrambling::None>;
+using XorSobolSampler = GlobalSobolSamplerT<SobolScrambling::Xor>;
+
+// `sobol-owen`: padded, shuffled, Owen-scrambled Sobol' (Burley 2020).
+class OwenSobolSampler {
+public:
+    explicit OwenSobolSampler(const SamplerConfig& c)
+        : spp_(c.samplesPerPixel), seed_(c.seed), matrices_(sobolMatrices()) {}
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        pixelHash_ = hashValues(p.x, p.y, seed_);
+        index_ = static_cast<uint32_t>(index);
+        dimension_ = dim;
+    }
+    float get1D() {
+        const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_++) << 40 | 0x31));
+        const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
+        return fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 0), foldSeed(mixBits(h))));
+    }
+    Vec2f get2D() {
+        const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_) << 40 | 0x32));
+        dimension_ += 2;
+        const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
+        const uint64_t s = mixBits(h);
+        return {fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 0), uint32_t(s))),
+                fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 1), uint32_t(s >> 32)))};
+    }
+    Vec2f getPixel2D() { return get2D(); }
+
+private:
+    int spp_;
+    uint64_t seed_;
+    const uint32_t* matrices_;
+    uint64_t pixelHash_ = 0;
+    uint32_t index_ = 0;
+    int dimension_ = 0;
+};
+
+// `zsobol`: Morton-ordered, base-4-digit-permuted, Owen-scrambled Sobol'.
+class ZSobolSampler {
+public:
+    explicit ZSobolSampler(const SamplerConfig& c);
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        mortonIndex_ = (encodeMorton2(uint32_t(p.x), uint32_t(p.y)) << log2Spp_) | uint64_t(index);
+        dimension_ = dim;
+    }
+    float get1D() {
+        const uint64_t index = sampleIndex(dimension_);
+        const uint32_t seed = foldSeed(hashValues(dimension_, seed_, 0x5a31u));
+        ++dimension_;
+        return fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), seed));
+    }
+    Vec2f get2D() {
+        const uint64_t index = sampleIndex(dimension_);
+        const uint64_t seeds = hashValues(dimension_, seed_, 0x5a32u);
+        dimension_ += 2;
+        return {fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), uint32_t(seeds))),
+                fixedPointToFloat(
+                    owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
+    }
+    Vec2f getPixel2D() { return get2D(); }
+
+    // The permuted global index for the current pixel sample in `dimension`
+    // (Ahmed & Wonka 2020, §4: random permutation of each base-4 digit chosen
+    // by the digits above it).
+    uint64_t sampleIndex(int dimension) const;
+
+private:
+    int spp_;
+    uint64_t seed_;
+    const uint32_t* matrices_;
+    int log2Spp_ = 0;
+    int base4Digits_ = 0;
+    uint64_t mortonIndex_ = 0;
+    int dimension_ = 0;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,23 @@
+// Radially averaged power spectra (periodograms) — the standard picture of a
+// sampling pattern's frequency content (Ulichney 1987, "Digital Halftoning";
+// Heck, Schlömer & Deussen 2013, "Blue Noise Sampling with Controlled
+// Aliasing"). Normalised so that white noise has expected power 1 at every
+// non-zero frequency: blue noise is below 1 at low frequencies.
+#pragma once
+
+#include <vector>
+
+#include "core/math.h"
+
+namespace pathlab {
+
+// Point set in [0,1)²: P(f) = |Σ_j exp(−2πi f·x_j)|² / N over integer frequency
+// vectors f with |f| ≤ maxFrequency, averaged over rings of width 1.
+// Element r is the ring round(|f|) = r (element 0 is the DC term, equal to N).
+std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int maxFrequency);
+
+// Scalar image (row-major w × h): periodogram of the mean-subtracted values
+// divided by their variance, ring-averaged up to the Nyquist radius min(w,h)/2.
+std::vector<double> radialPowerSpectrum(const std::vector<double>& image, int w, int h);
+
+}  // namespace pathlab

@@ -1,0 +1,52 @@
+// `standard`: the presentation's "Standard Sampler" — C++'s minimal-standard
+// LCG (Lewis, Goodman & Miller 1969; Park & Miller 1988, "Random Number
+// Generators: Good Ones Are Hard to Find"), x_{n+1} = 16807 x_n mod (2^31 − 1),
+// through std::uniform_real_distribution<float>(0,1).
+//
+// The presentation draws from one static engine shared by all pixels, which
+// makes the image depend on thread scheduling. Here the engine is re-seeded for
+// every (pixel, sample index, seed) from a hash, and advanced by the dimension,
+// so results are deterministic; each float costs exactly one engine step
+// (generate_canonical needs ceil(24 / log2(2^31 − 2)) = 1 call).
+#pragma once
+
+#include <random>
+
+#include "core/hash.h"
+#include "sampling/sampler.h"
+
+namespace pathlab {
+
+using MinimalStandardEngine = std::linear_congruential_engine<uint32_t, 16807, 0, 2147483647>;
+
+class StandardSampler {
+public:
+    explicit StandardSampler(const SamplerConfig& c) : spp_(c.samplesPerPixel), seed_(c.seed) {}
+
+    int samplesPerPixel() const { return spp_; }
+    void startPixelSample(Vec2i p, int index, int dim) {
+        // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly.
+        const uint64_t h = hashValues(p.x, p.y, index, seed_);
+        engine_.seed(static_cast<uint32_t>(1 + h % 2147483646u));
+        engine_.discard(static_cast<unsigned long long>(dim));
+    }
+    float get1D() {
+        // The presentation clamps every value to [0, 1 − ε]; generate_canonical
+        // can round up to exactly 1 for floats.
+        const float v = distribution_(engine_);
+        return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
+    }
+    Vec2f get2D() {
+        const float a = get1D();
+        return {a, get1D()};
+    }
+    Vec2f getPixel2D() { return get2D(); }
+
+private:
+    int spp_;
+    uint64_t seed_;
+    MinimalStandardEngine engine_;
+    std::uniform_real_distribution<float> distribution_{0.0f, 1.0f};
+};
+
+}  // namespace pathlab

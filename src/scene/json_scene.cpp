@@ -1,0 +1,581 @@
+#include "scene/json_scene.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "scene/mesh_utils.h"
+#include "scene/obj_loader.h"
+#include "scene/texture_loader.h"
+
+namespace pathlab {
+namespace fs = std::filesystem;
+namespace {
+
+// Keeps the keys in file order, so materials are numbered as written.
+using Json = nlohmann::ordered_json;
+
+const char* typeName(const Json& j) {
+    if (j.is_number()) return "a number";
+    if (j.is_string()) return "a string";
+    if (j.is_boolean()) return "a boolean";
+    if (j.is_array()) return "an array";
+    if (j.is_object()) return "an object";
+    return "null";
+}
+
+struct Context {
+    std::string source;
+    fs::path baseDir;
+};
+
+// A JSON value with its position in the document ("meshes[2].material"), so
+// every error names the key it is about.
+class Node {
+public:
+    Node(const Json& j, std::string path, const Context& ctx)
+        : j_(j), path_(std::move(path)), ctx_(ctx) {}
+
+    const Json& json() const { return j_; }
+    const std::string& path() const { return path_; }
+
+    [[noreturn]] void fail(const std::string& message) const {
+        throw InputError(ctx_.source + ": " + (path_.empty() ? "" : path_ + ": ") + message);
+    }
+
+    void requireObject() const {
+        if (!j_.is_object()) fail(std::string("expected an object, got ") + typeName(j_));
+    }
+    // Every key must be one of `allowed`.
+    void keys(std::initializer_list<std::string_view> allowed) const {
+        requireObject();
+        for (const auto& [key, value] : j_.items()) {
+            bool ok = false;
+            for (std::string_view a : allowed) ok |= key == a;
+            if (ok) continue;
+            std::string list;
+            for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+            fail("unknown key '" + key + "' (expected one of: " + list + ")");
+        }
+    }
+    bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
+    Node operator[](const char* key) const {
+        requireObject();
+        if (!j_.contains(key)) fail(std::string("missing required key '") + key + "'");
+        return Node(j_.at(key), join(key), ctx_);
+    }
+    size_t size() const {
+        if (!j_.is_array()) fail(std::string("expected an array, got ") + typeName(j_));
+        return j_.size();
+    }
+    Node at(size_t i) const {
+        return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", ctx_);
+    }
+
+    float number() const {
+        if (!j_.is_number()) fail(std::string("expected a number, got ") + typeName(j_));
+        const float v = j_.get<float>();
+        if (!std::isfinite(v)) fail("number out of range");
+        return v;
+    }
+    float positive() const {
+        const float v = number();
+        if (!(v > 0)) fail("must be positive");
+        return v;
+    }
+    int integer() const {
+        if (!j_.is_number_integer())
+            fail(std::string("expected an integer, got ") + typeName(j_));
+        const auto v = j_.get<int64_t>();
+        if (v < 1 || v > 1 << 16) fail("must be between 1 and 65536");
+        return int(v);
+    }
+    bool boolean() const {
+        if (!j_.is_boolean()) fail(std::string("expected true or false, got ") + typeName(j_));
+        return j_.get<bool>();
+    }
+    std::string string() const {
+        if (!j_.is_string()) fail(std::string("expected a string, got ") + typeName(j_));
+        return j_.get<std::string>();
+    }
+    Vec3f vec3() const {
+        if (!j_.is_array() || j_.size() != 3 || !j_[0].is_number() || !j_[1].is_number() ||
+            !j_[2].is_number())
+            fail(std::string("expected an array of 3 numbers, got ") + typeName(j_));
+        const Vec3f v{at(0).number(), at(1).number(), at(2).number()};
+        return v;
+    }
+    // An RGB triple, or one number for grey; never negative.
+    Vec3f colour() const {
+        Vec3f c;
+        if (j_.is_number())
+            c = Vec3f(number());
+        else if (j_.is_array() && j_.size() == 3)
+            c = vec3();
+        else
+            fail(std::string("expected an RGB colour [r, g, b] or one number, got ") +
+                 typeName(j_));
+        if (c.x < 0 || c.y < 0 || c.z < 0) fail("colour components must not be negative");
+        return c;
+    }
+    fs::path file() const {
+        const std::string s = string();
+        if (s.empty()) fail("empty file name");
+        const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : ctx_.baseDir / s;
+        if (!fs::is_regular_file(p)) fail("file '" + p.string() + "' does not exist");
+        return p;
+    }
+
+private:
+    std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+    const Json& j_;
+    std::string path_;
+    const Context& ctx_;
+};
+
+struct Builder {
+    SceneDescription scene;
+    std::map<std::string, int> materialIndex;
+    std::map<std::string, int> textureIndex;  // by path, loaded once
+
+    int material(const Node& n) {
+        const std::string name = n.string();
+        auto it = materialIndex.find(name);
+        if (it == materialIndex.end()) n.fail("unknown material '" + name + "'");
+        return it->second;
+    }
+};
+
+struct Metal {
+    const char* name;
+    Vec3f eta, k;
+};
+// Complex indices of refraction at the sRGB primaries' wavelengths
+// (approximately 650, 550, 450 nm), from the measured data pbrt ships.
+constexpr Metal kMetals[] = {
+    {"gold", {0.143f, 0.374f, 1.442f}, {3.983f, 2.385f, 1.603f}},
+    {"silver", {0.155f, 0.117f, 0.138f}, {4.828f, 3.122f, 2.147f}},
+    {"copper", {0.200f, 0.924f, 1.102f}, {3.912f, 2.452f, 2.142f}},
+    {"aluminium", {1.657f, 0.880f, 0.521f}, {9.224f, 6.270f, 4.837f}},
+};
+
+Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
+    Material m;
+    m.name = name;
+    const std::string type = n["type"].string();
+    if (type == "diffuse") {
+        n.keys({"type", "albedo", "texture"});
+        m.type = MaterialType::Diffuse;
+        if (n.has("albedo")) m.albedo = n["albedo"].colour();
+        if (n.has("texture")) {
+            const Node t = n["texture"];
+            const std::string path = t.file().lexically_normal().string();
+            auto it = b.textureIndex.find(path);
+            if (it == b.textureIndex.end()) {
+                try {
+                    b.scene.textures.push_back(loadTexture(path));
+                } catch (const InputError& e) {
+                    t.fail(e.what());
+                }
+                it = b.textureIndex.emplace(path, int(b.scene.textures.size()) - 1).first;
+            }
+            m.texture = it->second;
+            if (!n.has("albedo")) m.albedo = Vec3f(1.0f);
+        }
+    } else if (type == "mirror") {
+        n.keys({"type", "albedo"});
+        m.type = MaterialType::Mirror;
+        m.albedo = n.has("albedo") ? n["albedo"].colour() : Vec3f(1.0f);
+    } else if (type == "dielectric") {
+        n.keys({"type", "ior"});
+        m.type = MaterialType::Dielectric;
+        m.albedo = Vec3f(1.0f);
+        if (n.has("ior")) m.ior = n["ior"].positive();
+    } else if (type == "conductor") {
+        n.keys({"type", "metal", "eta", "k", "roughness"});
+        m.type = MaterialType::Conductor;
+        if (n.has("metal")) {
+            if (n.has("eta") || n.has("k")) n.fail("give either 'metal' or 'eta' and 'k', not both");
+            const Node metal = n["metal"];
+            const std::string s = metal.string();
+            const Metal* found = nullptr;
+            for (const Metal& x : kMetals)
+                if (s == x.name) found = &x;
+            if (!found) metal.fail("unknown metal '" + s + "' (gold, silver, copper, aluminium)");
+            m.eta = found->eta, m.k = found->k;
+        } else {
+            m.eta = n["eta"].colour();
+            m.k = n["k"].colour();
+        }
+        if (n.has("roughness")) {
+            m.roughness = n["roughness"].number();
+            if (m.roughness < 0) n["roughness"].fail("must not be negative");
+        }
+    } else {
+        n["type"].fail("unknown material type '" + type +
+                       "' (diffuse, mirror, dielectric, conductor)");
+    }
+    return m;
+}
+
+Affine parseTransform(const Node& n) {
+    n.keys({"scale", "rotate", "translate"});
+    // Applied in the order scale, rotate(s), translate.
+    Affine xf;
+    if (n.has("scale")) {
+        const Node s = n["scale"];
+        const Vec3f v = s.json().is_number() ? Vec3f(s.number()) : s.vec3();
+        if (v.x == 0 || v.y == 0 || v.z == 0) s.fail("scale must not be zero");
+        xf = Affine::scaling(v);
+    }
+    if (n.has("rotate")) {
+        const Node r = n["rotate"];
+        auto one = [](const Node& rot) {
+            rot.keys({"axis", "degrees"});
+            const Vec3f axis = rot["axis"].vec3();
+            if (dot(axis, axis) == 0) rot["axis"].fail("axis must not be zero");
+            return Affine::rotation(axis, rot["degrees"].number());
+        };
+        if (r.json().is_array())
+            for (size_t i = 0; i < r.size(); ++i) xf = one(r.at(i)) * xf;
+        else
+            xf = one(r) * xf;
+    }
+    if (n.has("translate")) xf = Affine::translation(n["translate"].vec3()) * xf;
+    return xf;
+}
+
+// A list of polygons with `corners` vertices each: [[[x,y,z], ...], ...].
+void appendPolygons(const Node& list, int corners, Mesh& mesh) {
+    for (size_t i = 0; i < list.size(); ++i) {
+        const Node poly = list.at(i);
+        if (poly.size() != size_t(corners))
+            poly.fail("expected " + std::to_string(corners) + " vertices, got " +
+                      std::to_string(poly.size()));
+        Vec3f p[4];
+        for (int c = 0; c < corners; ++c) p[c] = poly.at(c).vec3();
+        if (corners == 4)
+            appendQuad(mesh, p[0], p[1], p[2], p[3]);
+        else
+            appendTriangle(mesh, p[0], p[1], p[2]);
+    }
+}
+
+void parseMesh(const Node& n, size_t index, Builder& b) {
+    if (n.has("obj")) {
+        n.keys({"obj", "material", "transform"});
+        const size_t first = b.scene.meshes.size();
+        const int forced = n.has("material") ? b.material(n["material"]) : -1;
+        try {
+            appendObj(b.scene, n["obj"].file().string(), forced);
+        } catch (const InputError& e) {
+            n["obj"].fail(e.what());
+        }
+        if (n.has("transform")) {
+            const Affine xf = parseTransform(n["transform"]);
+            for (size_t i = first; i < b.scene.meshes.size(); ++i) transformMesh(b.scene.meshes[i], xf);
+        }
+        return;
+    }
+    n.keys({"name", "material", "quads", "triangles", "positions", "indices", "normals", "uvs",
+            "emission", "twoSided", "transform"});
+    Mesh mesh;
+    mesh.name = n.has("name") ? n["name"].string() : "mesh" + std::to_string(index);
+    mesh.material = b.material(n["material"]);
+    const bool indexed = n.has("positions") || n.has("indices");
+    if (indexed && (n.has("quads") || n.has("triangles")))
+        n.fail("give either 'positions' and 'indices' or 'quads'/'triangles', not both");
+    if (indexed) {
+        const Node pos = n["positions"], idx = n["indices"];
+        for (size_t i = 0; i < pos.size(); ++i) mesh.positions.push_back(pos.at(i).vec3());
+        if (idx.size() % 3 != 0) idx.fail("the number of indices must be a multiple of 3");
+        for (size_t i = 0; i < idx.size(); ++i) {
+            const Node e = idx.at(i);
+            if (!e.json().is_number_unsigned())
+                e.fail(std::string("expected a non-negative integer, got ") + typeName(e.json()));
+            const uint64_t v = e.json().get<uint64_t>();
+            if (v >= mesh.positions.size())
+                e.fail("index " + std::to_string(v) + " out of range (" +
+                       std::to_string(mesh.positions.size()) + " positions)");
+            mesh.indices.push_back(uint32_t(v));
+        }
+        if (n.has("normals")) {
+            const Node nn = n["normals"];
+            if (nn.size() != mesh.positions.size()) nn.fail("needs one normal per position");
+            for (size_t i = 0; i < nn.size(); ++i) {
+                const Vec3f v = nn.at(i).vec3();
+                if (dot(v, v) == 0) nn.at(i).fail("normal must not be zero");
+                mesh.normals.push_back(normalize(v));
+            }
+        }
+        if (n.has("uvs")) {
+            const Node uv = n["uvs"];
+            if (uv.size() != mesh.positions.size()) uv.fail("needs one UV per position");
+            for (size_t i = 0; i < uv.size(); ++i) {
+                const Node e = uv.at(i);
+                if (e.size() != 2) e.fail("expected [u, v]");
+                mesh.uvs.push_back({e.at(0).number(), e.at(1).number()});
+            }
+        }
+    } else {
+        if (n.has("normals") || n.has("uvs"))
+            n.fail("'normals' and 'uvs' need the indexed form ('positions' and 'indices')");
+        if (!n.has("quads") && !n.has("triangles"))
+            n.fail("needs 'quads', 'triangles', 'positions' and 'indices', or 'obj'");
+        if (n.has("quads")) appendPolygons(n["quads"], 4, mesh);
+        if (n.has("triangles")) appendPolygons(n["triangles"], 3, mesh);
+    }
+    if (n.has("emission")) mesh.emission = n["emission"].colour();
+    if (n.has("twoSided")) mesh.twoSided = n["twoSided"].boolean();
+    if (n.has("transform")) transformMesh(mesh, parseTransform(n["transform"]));
+    b.scene.meshes.push_back(std::move(mesh));
+}
+
+// Lights reflect nothing unless given a material: they are emitters only.
+int blackMaterial(Builder& b) {
+    const std::string name = "(light)";
+    auto it = b.materialIndex.find(name);
+    if (it != b.materialIndex.end()) return it->second;
+    Material m;
+    m.name = name;
+    m.albedo = Vec3f(0.0f);
+    b.scene.materials.push_back(m);
+    return b.materialIndex[name] = int(b.scene.materials.size()) - 1;
+}
+
+void parseLight(const Node& n, size_t index, Builder& b) {
+    n.keys({"name", "type", "vertices", "emission", "twoSided", "material"});
+    Mesh mesh;
+    mesh.name = n.has("name") ? n["name"].string() : "light" + std::to_string(index);
+    const Node typeNode = n["type"];
+    const std::string type = typeNode.string();
+    int corners = 0;
+    if (type == "quad")
+        corners = 4;
+    else if (type == "triangle")
+        corners = 3;
+    else
+        typeNode.fail("unknown light type '" + type + "' (quad, triangle)");
+    const Node v = n["vertices"];
+    if (v.size() != size_t(corners))
+        v.fail("a " + type + " light needs " + std::to_string(corners) + " vertices, got " +
+               std::to_string(v.size()));
+    Vec3f p[4];
+    for (int c = 0; c < corners; ++c) p[c] = v.at(c).vec3();
+    if (corners == 4)
+        appendQuad(mesh, p[0], p[1], p[2], p[3]);
+    else
+        appendTriangle(mesh, p[0], p[1], p[2]);
+    if (!(length(triangleNormalArea(p[0], p[1], p[2])) > 0) ||
+        (corners == 4 && !(length(triangleNormalArea(p[0], p[2], p[3])) > 0)))
+        v.fail("the light has zero area");
+    mesh.emission = n["emission"].colour();
+    if (isBlack(mesh.emission)) n["emission"].fail("a light's emission must not be black");
+    if (n.has("twoSided")) mesh.twoSided = n["twoSided"].boolean();
+    mesh.material = n.has("material") ? b.material(n["material"]) : blackMaterial(b);
+    b.scene.meshes.push_back(std::move(mesh));
+}
+
+void parseSphere(const Node& n, Builder& b) {
+    n.keys({"center", "radius", "material"});
+    Sphere s;
+    s.center = n["center"].vec3();
+    s.radius = n["radius"].positive();
+    s.material = b.material(n["material"]);
+    b.scene.spheres.push_back(s);
+}
+
+Json parseText(const std::string& text, const std::string& source) {
+    // nlohmann keeps the last of duplicate keys silently; a duplicate is almost
+    // always a mistake, so the parser callback tracks each object's keys.
+    std::vector<std::set<std::string>> open;
+    std::string duplicate;
+    auto callback = [&](int, Json::parse_event_t event, Json& parsed) {
+        switch (event) {
+            case Json::parse_event_t::object_start: open.emplace_back(); break;
+            case Json::parse_event_t::object_end:
+                if (!open.empty()) open.pop_back();
+                break;
+            case Json::parse_event_t::key:
+                if (!open.empty() && !open.back().insert(parsed.get<std::string>()).second &&
+                    duplicate.empty())
+                    duplicate = parsed.get<std::string>();
+                break;
+            default: break;
+        }
+        return true;
+    };
+    try {
+        Json j = Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+        if (!duplicate.empty()) throw InputError(source + ": duplicate key '" + duplicate + "'");
+        return j;
+    } catch (const Json::parse_error& e) {
+        // what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
+        std::string why = e.what();
+        if (const auto p = why.find("] "); p != std::string::npos) why = why.substr(p + 2);
+        throw InputError(source + ": invalid JSON: " + why);
+    }
+}
+
+}  // namespace
+
+SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir,
+                                const std::string& source) {
+    const Json j = parseText(text, source);
+    const Context ctx{source, baseDir};
+    const Node root(j, "", ctx);
+    root.keys({"name", "credit", "camera", "resolution", "environment", "materials", "meshes",
+               "lights", "spheres"});
+    Builder b;
+    SceneDescription& s = b.scene;
+    s.name = root.has("name") ? root["name"].string() : fs::path(source).stem().string();
+    if (root.has("credit")) s.credit = root["credit"].string();
+
+    const Node cam = root["camera"];
+    cam.keys({"eye", "target", "up", "fovY"});
+    s.camera.eye = cam["eye"].vec3();
+    s.camera.target = cam["target"].vec3();
+    if (cam.has("up")) s.camera.up = cam["up"].vec3();
+    s.camera.fovY = cam["fovY"].number();
+    if (!(s.camera.fovY > 0 && s.camera.fovY < 180)) cam["fovY"].fail("must be in (0, 180) degrees");
+    if (s.camera.eye.x == s.camera.target.x && s.camera.eye.y == s.camera.target.y &&
+        s.camera.eye.z == s.camera.target.z)
+        cam["target"].fail("camera target equals its eye");
+
+    if (root.has("resolution")) {
+        const Node r = root["resolution"];
+        if (r.size() != 2) r.fail("expected [width, height]");
+        s.resolution = {r.at(0).integer(), r.at(1).integer()};
+    }
+    if (root.has("environment")) s.environment = root["environment"].colour();
+
+    if (root.has("materials")) {
+        const Node mats = root["materials"];
+        mats.requireObject();
+        for (const auto& [name, value] : mats.json().items()) {
+            const Node m(value, mats.path() + "." + name, ctx);
+            s.materials.push_back(parseMaterial(m, name, b));
+            b.materialIndex[name] = int(s.materials.size()) - 1;
+        }
+    }
+    if (root.has("meshes")) {
+        const Node meshes = root["meshes"];
+        for (size_t i = 0; i < meshes.size(); ++i) parseMesh(meshes.at(i), i, b);
+    }
+    if (root.has("lights")) {
+        const Node lights = root["lights"];
+        for (size_t i = 0; i < lights.size(); ++i) parseLight(lights.at(i), i, b);
+    }
+    if (root.has("spheres")) {
+        const Node spheres = root["spheres"];
+        for (size_t i = 0; i < spheres.size(); ++i) parseSphere(spheres.at(i), b);
+    }
+    if (s.meshes.empty() && s.spheres.empty())
+        throw InputError(source + ": the scene has no meshes, lights or spheres");
+    return s;
+}
+
+SceneDescription loadJsonScene(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot open scene file '" + path + "'");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseJsonScene(text.str(), fs::path(path).parent_path(), path);
+}
+
+namespace {
+
+// The shortest decimal that reads back as the same float, so written scenes
+// say 0.725 rather than 0.7250000238418579.
+double shortest(float v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+}
+Json toJson(Vec3f v) { return Json::array({shortest(v.x), shortest(v.y), shortest(v.z)}); }
+
+}  // namespace
+
+std::string sceneToJson(const SceneDescription& s) {
+    Json j;
+    j["name"] = s.name;
+    if (!s.credit.empty()) j["credit"] = s.credit;
+    j["camera"] = {{"eye", toJson(s.camera.eye)},
+                   {"target", toJson(s.camera.target)},
+                   {"up", toJson(s.camera.up)},
+                   {"fovY", shortest(s.camera.fovY)}};
+    j["resolution"] = {s.resolution.x, s.resolution.y};
+    j["environment"] = toJson(s.environment);
+    // Material names must be unique keys; repeated names get their index appended.
+    std::vector<std::string> names;
+    std::set<std::string> used;
+    Json mats = Json::object();
+    for (size_t i = 0; i < s.materials.size(); ++i) {
+        const Material& m = s.materials[i];
+        std::string name = m.name.empty() ? "material" + std::to_string(i) : m.name;
+        if (!used.insert(name).second) used.insert(name += "#" + std::to_string(i));
+        names.push_back(name);
+        Json o;
+        switch (m.type) {
+            case MaterialType::Diffuse:
+                if (m.texture >= 0)
+                    throw InputError("cannot write material '" + m.name +
+                                     "': textures have no file to refer to");
+                o = {{"type", "diffuse"}, {"albedo", toJson(m.albedo)}};
+                break;
+            case MaterialType::Mirror: o = {{"type", "mirror"}, {"albedo", toJson(m.albedo)}}; break;
+            case MaterialType::Dielectric: o = {{"type", "dielectric"}, {"ior", shortest(m.ior)}}; break;
+            case MaterialType::Conductor:
+                o = {{"type", "conductor"},
+                     {"eta", toJson(m.eta)},
+                     {"k", toJson(m.k)},
+                     {"roughness", shortest(m.roughness)}};
+                break;
+        }
+        mats[name] = o;
+    }
+    j["materials"] = mats;
+    Json meshes = Json::array();
+    for (const Mesh& m : s.meshes) {
+        Json o;
+        o["name"] = m.name;
+        o["material"] = names.at(size_t(m.material));
+        Json pos = Json::array();
+        for (const Vec3f& p : m.positions) pos.push_back(toJson(p));
+        o["positions"] = pos;
+        o["indices"] = m.indices;
+        if (!m.normals.empty()) {
+            Json nn = Json::array();
+            for (const Vec3f& n : m.normals) nn.push_back(toJson(n));
+            o["normals"] = nn;
+        }
+        if (!m.uvs.empty()) {
+            Json uv = Json::array();
+            for (const Vec2f& t : m.uvs) uv.push_back({shortest(t.x), shortest(t.y)});
+            o["uvs"] = uv;
+        }
+        if (!isBlack(m.emission)) o["emission"] = toJson(m.emission);
+        if (m.twoSided) o["twoSided"] = true;
+        meshes.push_back(o);
+    }
+    j["meshes"] = meshes;
+    if (!s.spheres.empty()) {
+        Json spheres = Json::array();
+        for (const Sphere& sp : s.spheres)
+            spheres.push_back({{"center", toJson(sp.center)},
+                               {"radius", shortest(sp.radius)},
+                               {"material", names.at(size_t(sp.material))}});
+        j["spheres"] = spheres;
+    }
+    return j.dump(2) + "\n";
+}
+
+}  // namespace pathlab

@@ -1,0 +1,62 @@
+// Small geometry helpers shared by the scene loaders: building meshes out of
+// triangles and quads, bounds, transforms.
+#pragma once
+
+#include <limits>
+
+#include "scene/scene.h"
+
+namespace pathlab {
+
+struct Bounds3f {
+    Vec3f lo{std::numeric_limits<float>::infinity()};
+    Vec3f hi{-std::numeric_limits<float>::infinity()};
+    void extend(Vec3f p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    bool empty() const { return lo.x > hi.x; }
+    Vec3f center() const { return (lo + hi) * 0.5f; }
+    Vec3f extent() const { return hi - lo; }
+};
+
+Bounds3f meshBounds(const Mesh& mesh);
+// Meshes and spheres together.
+Bounds3f sceneBounds(const SceneDescription& scene);
+
+// Twice the area's vector: (p1−p0)×(p2−p0); its direction is the triangle's
+// front side (the side a one-sided light emits towards).
+inline Vec3f triangleNormalArea(Vec3f p0, Vec3f p1, Vec3f p2) { return cross(p1 - p0, p2 - p0); }
+
+// Appends one triangle with its own three vertices.
+void appendTriangle(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2);
+// Appends a planar quad p0 p1 p2 p3 (in order around its boundary) as the two
+// triangles (p0,p1,p2) and (p0,p2,p3): both keep the quad's winding, so a
+// quad's front side is that of (p1−p0)×(p2−p0).
+void appendQuad(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2, Vec3f p3);
+
+// An affine transform p ↦ M p + t (row-major 3×3 M).
+struct Affine {
+    float m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    Vec3f t{0.0f};
+
+    static Affine translation(Vec3f t);
+    static Affine scaling(Vec3f s);
+    // Rotation by `degrees` around `axis` (right-handed, Rodrigues' formula).
+    static Affine rotation(Vec3f axis, float degrees);
+    // (a * b)(p) = a(b(p)).
+    friend Affine operator*(const Affine& a, const Affine& b);
+
+    Vec3f point(Vec3f p) const;
+    Vec3f vector(Vec3f v) const;
+    // Normals transform with the inverse transpose; the result is normalised.
+    Vec3f normal(Vec3f n) const;
+    float determinant() const;
+};
+
+// Applies `xf` to positions and normals. A mirroring transform (negative
+// determinant) would turn every triangle's front side inside out, so the
+// winding is flipped to keep one-sided lights emitting outwards as authored.
+void transformMesh(Mesh& mesh, const Affine& xf);
+
+}  // namespace pathlab

@@ -1,0 +1,20 @@
+#include <cmath>
+
+#include "scene/scene.h"
+
+namespace pathlab {
+
+Vec3f Texture::lookup(Vec2f uv) const {
+    if (width <= 0 || height <= 0) return Vec3f(0.0f);
+    const float fx = (uv.x - std::floor(uv.x)) * width - 0.5f;
+    const float fy = (uv.y - std::floor(uv.y)) * height - 0.5f;
+    const float x0f = std::floor(fx), y0f = std::floor(fy);
+    const float tx = fx - x0f, ty = fy - y0f;
+    auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
+    const int x0 = wrap(int(x0f), width), x1 = wrap(int(x0f) + 1, width);
+    const int y0 = wrap(int(y0f), height), y1 = wrap(int(y0f) + 1, height);
+    auto texel = [&](int x, int y) { return texels[size_t(y) * width + x]; };
+    return lerp(ty, lerp(tx, texel(x0, y0), texel(x1, y0)), lerp(tx, texel(x0, y1), texel(x1, y1)));
+}
+
+}  // namespace pathlab

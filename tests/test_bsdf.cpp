@@ -1,0 +1,162 @@
+// The BSDFs: sampling matches the density (chi-square), sample() agrees with
+// f()/pdf(), no BSDF creates energy, Fresnel and refraction match closed forms.
+#include <gtest/gtest.h>
+
+#include "chi_square.h"
+#include "core/rng.h"
+#include "render/bsdf.h"
+#include "render/sampling_routines.h"
+
+namespace pathlab {
+namespace {
+
+Vec3f directionFromAngle(float thetaDegrees, float phiDegrees = 30) {
+    const float t = thetaDegrees * kPi / 180, p = phiDegrees * kPi / 180;
+    return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+struct NamedBsdf {
+    const char* name;
+    Bsdf bsdf;
+};
+
+std::vector<NamedBsdf> glossyAndDiffuse() {
+    const Vec3f gold_eta{0.143f, 0.374f, 1.442f}, gold_k{3.983f, 2.385f, 1.603f};
+    return {{"diffuse", Bsdf::diffuse(Vec3f(0.5f, 0.6f, 0.7f))},
+            {"ggx-0.1", Bsdf::conductor(gold_eta, gold_k, 0.1f)},
+            {"ggx-0.3", Bsdf::conductor(gold_eta, gold_k, 0.3f)},
+            {"ggx-0.8", Bsdf::conductor(gold_eta, gold_k, 0.8f)}};
+}
+
+const float kIncidentAngles[] = {0.0f, 30.0f, 60.0f, 85.0f, 120.0f};
+
+TEST(BsdfSampling, ChiSquareAgainstPdf) {
+    const int tests = int(glossyAndDiffuse().size() * std::size(kIncidentAngles));
+    const double alpha = testing::sidakSignificance(0.01, tests);
+    for (const NamedBsdf& nb : glossyAndDiffuse()) {
+        for (float angle : kIncidentAngles) {
+            const Vec3f wo = directionFromAngle(angle);
+            Pcg32 rng(7, 0);
+            const auto result = testing::chiSquareTest(
+                [&](int) -> std::optional<Vec3f> {
+                    const float uLobe = rng.nextFloat();
+                    const float u0 = rng.nextFloat();
+                    const auto s = nb.bsdf.sample(wo, uLobe, {u0, rng.nextFloat()});
+                    if (!s) return std::nullopt;
+                    return s->wi;
+                },
+                [&](Vec3f wi) { return double(nb.bsdf.pdf(wo, wi)); }, 400000);
+            EXPECT_GT(result.pValue, alpha)
+                << nb.name << " at " << angle << " degrees: " << result.detail;
+        }
+    }
+}
+
+TEST(BsdfSampling, SampleAgreesWithEvalAndPdf) {
+    for (const NamedBsdf& nb : glossyAndDiffuse()) {
+        Pcg32 rng(3, 0);
+        for (int i = 0; i < 20000; ++i) {
+            const Vec3f wo = sampleUniformSphere({rng.nextFloat(), rng.nextFloat()});
+            const float uLobe = rng.nextFloat();
+            const float u0 = rng.nextFloat();
+            const auto s = nb.bsdf.sample(wo, uLobe, {u0, rng.nextFloat()});
+            if (!s) continue;
+            ASSERT_FALSE(s->specular);
+            const float pdf = nb.bsdf.pdf(wo, s->wi);
+            ASSERT_NEAR(s->pdf, pdf, 1e-3f * std::max(1.0f, pdf)) << nb.name;
+            const Vec3f f = nb.bsdf.f(wo, s->wi);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(s->f[c], f[c], 1e-3f * std::max(1.0f, f[c])) << nb.name;
+        }
+    }
+}
+
+// ∫ f(wo,wi)|cosθi| dωi ≤ 1 for every wo, estimated by uniform sphere sampling
+// (independent of each BSDF's own sampling routine).
+TEST(BsdfEnergy, NoBsdfCreatesEnergy) {
+    for (const NamedBsdf& nb : glossyAndDiffuse()) {
+        for (float angle : kIncidentAngles) {
+            const Vec3f wo = directionFromAngle(angle);
+            Pcg32 rng(11, 0);
+            const int n = 400000;
+            double sum[3] = {0, 0, 0};
+            for (int i = 0; i < n; ++i) {
+                const Vec3f wi = sampleUniformSphere({rng.nextFloat(), rng.nextFloat()});
+                const Vec3f v = nb.bsdf.f(wo, wi) * (absCosTheta(wi) / uniformSpherePdf());
+                for (int c = 0; c < 3; ++c) sum[c] += v[c];
+            }
+            for (int c = 0; c < 3; ++c)
+                EXPECT_LE(sum[c] / n, 1.01) << nb.name << " at " << angle << " channel " << c;
+        }
+    }
+    // The diffuse albedo is reproduced exactly in expectation.
+    const Bsdf d = Bsdf::diffuse(Vec3f(0.5f));
+    Pcg32 rng(5, 0);
+    double sum = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const Vec3f wi = sampleUniformSphere({rng.nextFloat(), rng.nextFloat()});
+        sum += d.f(Vec3f(0, 0, 1), wi).x * absCosTheta(wi) / uniformSpherePdf();
+    }
+    EXPECT_NEAR(sum / 200000, 0.5, 0.01);
+}
+
+TEST(BsdfSpecular, DielectricSplitsEnergyByFresnel) {
+    const Bsdf glass = Bsdf::dielectric(1.5f);
+    const Vec3f wo = directionFromAngle(40);
+    const float R = fresnelDielectric(wo.z, 1.5f);
+    int reflected = 0;
+    const int n = 100000;
+    Pcg32 rng(1, 0);
+    for (int i = 0; i < n; ++i) {
+        const auto s = glass.sample(wo, rng.nextFloat(), {0.5f, 0.5f});
+        ASSERT_TRUE(s);
+        ASSERT_TRUE(s->specular);
+        if (s->wi.z > 0) {
+            ++reflected;
+            EXPECT_NEAR(s->wi.x, -wo.x, 1e-6f);
+            // Weight f·cos/pdf of the chosen lobe is 1 for reflection.
+            EXPECT_NEAR(s->weight().x, 1.0f, 1e-5f);
+        } else {
+            // Snell's law: sinθt = sinθi / η.
+            const float sinI = std::sqrt(1 - wo.z * wo.z), sinT = std::sqrt(1 - s->wi.z * s->wi.z);
+            EXPECT_NEAR(sinT, sinI / 1.5f, 1e-5f);
+            EXPECT_NEAR(s->weight().x, 1 / (1.5f * 1.5f), 1e-5f);
+        }
+    }
+    EXPECT_NEAR(double(reflected) / n, R, 0.005);
+}
+
+TEST(Fresnel, DielectricMatchesClosedForms) {
+    // Normal incidence: ((η−1)/(η+1))².
+    EXPECT_NEAR(fresnelDielectric(1.0f, 1.5f), 0.04f, 1e-6f);
+    // Total internal reflection beyond the critical angle from inside.
+    const float critical = std::asin(1 / 1.5f);
+    EXPECT_EQ(fresnelDielectric(-std::cos(critical + 0.01f), 1.5f), 1.0f);
+    EXPECT_LT(fresnelDielectric(-std::cos(critical - 0.01f), 1.5f), 1.0f);
+    // Brewster's angle: the parallel component vanishes, R = r⊥²/2.
+    const float brewster = std::atan(1.5f);
+    const float ci = std::cos(brewster), ct = std::cos(std::asin(std::sin(brewster) / 1.5f));
+    const float rPerp = (ci - 1.5f * ct) / (ci + 1.5f * ct);
+    EXPECT_NEAR(fresnelDielectric(ci, 1.5f), rPerp * rPerp / 2, 1e-6f);
+    // A conductor with k = 0 is a dielectric.
+    EXPECT_NEAR(fresnelComplex(0.7f, 1.5f, 0.0f), fresnelDielectric(0.7f, 1.5f), 1e-6f);
+}
+
+TEST(Ggx, DistributionIsNormalisedOverProjectedArea) {
+    // ∫ D(wm) cosθm dωm = 1 (microfacet projected area equals the macro area).
+    for (float alpha : {0.1f, 0.4f, 0.9f}) {
+        const GgxDistribution ggx{alpha};
+        Pcg32 rng(9, 0);
+        double sum = 0;
+        const int n = 2000000;
+        for (int i = 0; i < n; ++i) {
+            Vec3f wm = sampleCosineHemisphere({rng.nextFloat(), rng.nextFloat()});
+            if (wm.z <= 0) continue;
+            sum += ggx.D(wm) * wm.z / cosineHemispherePdf(wm.z);
+        }
+        EXPECT_NEAR(sum / n, 1.0, 0.03) << "alpha " << alpha;
+    }
+}
+
+}  // namespace
+}  // namespace pathlab

@@ -1,0 +1,169 @@
+// Exact known values, the [0,1) range, determinism and seeding of every sampler.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/error.h"
+#include "sampler_test_util.h"
+#include "sampling/lowdiscrepancy.h"
+
+namespace pathlab {
+namespace {
+
+using testing::allSamplerNames;
+using testing::drawPoints;
+
+double referenceRadicalInverse(uint64_t a, int base) {
+    double value = 0, weight = 1.0 / base;
+    for (; a; a /= base, weight /= base) value += double(a % base) * weight;
+    return value;
+}
+
+TEST(SamplerValues, ListsTheTwelveSamplersInOrder) {
+    const std::vector<std::string> expected = {
+        "standard",   "halton", "halton-rd", "halton-owen", "blue-noise", "independent",
+        "stratified", "sobol",  "sobol-xor", "sobol-owen",  "zsobol",     "pmj02"};
+    EXPECT_EQ(allSamplerNames(), expected);
+    EXPECT_THROW(makeSampler("no-such-sampler", SamplerConfig{}), InputError);
+}
+
+TEST(SamplerValues, MinimalStandardTenThousandthOutput) {
+    // Park & Miller 1988: x_10000 = 1043618065 from the seed 1 (the C++ default).
+    MinimalStandardEngine engine;
+    engine.discard(9999);
+    EXPECT_EQ(engine(), 1043618065u);
+}
+
+TEST(SamplerValues, HaltonPixelDimensionsAreRadicalInversesInBases2And3) {
+    const auto pts = drawPoints("halton", 200, 0, 1);
+    for (int i = 0; i < 200; ++i) {
+        EXPECT_FLOAT_EQ(pts[i].x, float(referenceRadicalInverse(i, 2))) << i;
+        EXPECT_FLOAT_EQ(pts[i].y, float(referenceRadicalInverse(i, 3))) << i;
+    }
+    // Higher dimensions use the next primes: dimension 2 base 5, 3 base 7.
+    const auto high = drawPoints("halton", 50, 2, 3);
+    for (int i = 0; i < 50; ++i) {
+        EXPECT_FLOAT_EQ(high[i].x, float(referenceRadicalInverse(i, 5))) << i;
+        EXPECT_FLOAT_EQ(high[i].y, float(referenceRadicalInverse(i, 7))) << i;
+    }
+}
+
+TEST(SamplerValues, SobolStartsWithTheKnownPoints) {
+    const auto pts = drawPoints("sobol", 4, 0, 1);
+    const float expected[4][2] = {{0, 0}, {0.5f, 0.5f}, {0.75f, 0.25f}, {0.25f, 0.75f}};
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(pts[i].x, expected[i][0]) << i;
+        EXPECT_EQ(pts[i].y, expected[i][1]) << i;
+    }
+    // Direction numbers of the third dimension (x^2 + x + 1, m = 1, 3):
+    // v = 1/2, 3/4, then m_3 = 2·3 ⊕ 4·1 ⊕ 1 = 7 → 7/8.
+    const uint32_t* c = sobolMatrices() + 2 * kSobolMatrixColumns;
+    EXPECT_EQ(c[0], 0x80000000u);
+    EXPECT_EQ(c[1], 0xc0000000u);
+    EXPECT_EQ(c[2], 0xe0000000u);
+}
+
+TEST(SamplerValues, ImagePlaneMappingPutsEverySampleInsideItsPixel) {
+    // Global sequences: every pixel's samples are the sequence points whose
+    // first two coordinates lie inside the pixel, and pixels never share them.
+    const Vec2i res{13, 7};
+    const uint32_t* m = sobolMatrices();
+    const SobolImageMapping sobolMap(m, res);
+    const HaltonImageMapping haltonMap(res);
+    std::vector<uint64_t> seen;
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            for (int i = 0; i < 8; ++i) {
+                const uint64_t g = sobolMap.index(m, {x, y}, i);
+                seen.push_back(g);
+                EXPECT_EQ(int(sobolBits(m, g, 0) >> (32 - sobolMap.log2Scale)), x);
+                EXPECT_EQ(int(sobolBits(m, g, 1) >> (32 - sobolMap.log2Scale)), y);
+                const uint64_t h = haltonMap.index({x, y}, i);
+                EXPECT_EQ(int(std::floor(referenceRadicalInverse(h, 2) * haltonMap.baseScales[0])),
+                          x);
+                EXPECT_EQ(int(std::floor(referenceRadicalInverse(h, 3) * haltonMap.baseScales[1])),
+                          y);
+            }
+    std::sort(seen.begin(), seen.end());
+    EXPECT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end());
+}
+
+TEST(SamplerValues, EveryValueIsInTheUnitIntervalForManyDimensions) {
+    for (const std::string& name : allSamplerNames()) {
+        AnySampler sampler = makeSampler(name, SamplerConfig{16, 7, {32, 32}});
+        std::visit(
+            [&](auto& s) {
+                for (Vec2i p : {Vec2i{0, 0}, Vec2i{31, 17}})
+                    for (int i = 0; i < 16; ++i) {
+                        s.startPixelSample(p, i, 0);
+                        const Vec2f px = s.getPixel2D();
+                        ASSERT_TRUE(px.x >= 0 && px.x < 1 && px.y >= 0 && px.y < 1) << name;
+                        for (int d = 2; d < 202;) {
+                            if (d % 3 == 0) {
+                                const Vec2f u = s.get2D();
+                                ASSERT_TRUE(u.x >= 0 && u.x < 1 && u.y >= 0 && u.y < 1) << name;
+                                d += 2;
+                            } else {
+                                const float u = s.get1D();
+                                ASSERT_TRUE(u >= 0 && u < 1) << name << " dim " << d;
+                                ++d;
+                            }
+                        }
+                    }
+            },
+            sampler);
+    }
+    // Far past the native dimensions too (Halton wraps after 1000 bases,
+    // Sobol' after 3667 dimensions).
+    for (const std::string& name : allSamplerNames())
+        for (int d : {998, 999, 3665, 3666, 3667, 5000})
+            for (const Vec2f& u : drawPoints(name, 8, d, d + 1, 3))
+                ASSERT_TRUE(u.x >= 0 && u.x < 1 && u.y >= 0 && u.y < 1) << name << " dim " << d;
+}
+
+TEST(SamplerValues, SameSeedSameOutputAndSeedChangesRandomizedSamplers) {
+    for (const std::string& name : allSamplerNames()) {
+        for (auto [i, j] : {std::pair{0, 1}, std::pair{3, 4}, std::pair{6, 7}, std::pair{2, 8}}) {
+            const auto a = drawPoints(name, 16, i, j, 5, {2, 3}, {8, 8});
+            const auto b = drawPoints(name, 16, i, j, 5, {2, 3}, {8, 8});
+            const auto c = drawPoints(name, 16, i, j, 6, {2, 3}, {8, 8});
+            bool same = true, differs = false;
+            for (int k = 0; k < 16; ++k) {
+                same = same && a[k].x == b[k].x && a[k].y == b[k].y;
+                differs = differs || a[k].x != c[k].x || a[k].y != c[k].y;
+            }
+            EXPECT_TRUE(same) << name;
+            // The global Halton/Sobol' samplers leave the pixel dimensions
+            // unscrambled (they decide which pixel a point belongs to).
+            const bool pixelDims = i == 0;
+            const bool globalMapped = name.rfind("halton", 0) == 0 || name.rfind("sobol", 0) == 0;
+            if (testing::isRandomized(name) && !(pixelDims && globalMapped && name != "sobol-owen"))
+                EXPECT_TRUE(differs) << name << " dims " << i << "," << j;
+            if (!testing::isRandomized(name)) EXPECT_FALSE(differs) << name;
+        }
+    }
+}
+
+TEST(SamplerValues, SamplesDoNotDependOnWhatWasDrawnBefore) {
+    // startPixelSample(p, i, d) must give dimension d's value however many
+    // draws came before it — the renderer restarts at every bounce.
+    for (const std::string& name : allSamplerNames()) {
+        AnySampler a = makeSampler(name, SamplerConfig{4, 1, {4, 4}});
+        AnySampler b = a;
+        std::visit(
+            [&](auto& s) {
+                auto& t = std::get<std::decay_t<decltype(s)>>(b);
+                s.startPixelSample({1, 2}, 3, 0);
+                (void)s.getPixel2D();
+                for (int k = 0; k < 7; ++k) (void)s.get1D();
+                const float u = s.get1D();  // dimension 9
+                t.startPixelSample({1, 2}, 3, 9);
+                EXPECT_EQ(u, t.get1D()) << name;
+            },
+            a);
+    }
+}
+
+}  // namespace
+}  // namespace pathlab
