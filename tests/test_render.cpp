@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "render/renderer.h"
+#include "scene/builtin_scenes.h"
 #include "sampling/registry.h"
 
 namespace pathlab {
@@ -135,6 +136,44 @@ TEST(RenderSettingsValidation, RejectsOutOfRangeValues) {
     s = {};
     s.sampler = "no-such-sampler";
     EXPECT_THROW(validateRenderSettings(s), InputError);
+}
+
+}  // namespace
+}  // namespace pathlab
+
+namespace pathlab {
+namespace {
+
+// Two independent Cornell-box renders at 1024 and 4096 spp differ only by their
+// noise: per pixel and channel z = (a − b)/√(σa² + σb²) has unit variance.
+TEST(CornellBox, ConvergesToOneImage) {
+    const RenderScene scene(cornellBoxScene());
+    RenderSettings s;
+    s.resolution = {40, 40};
+    s.samplesPerPixel = 1024;
+    s.seed = 1;
+    const RenderOutput a = render(scene, s);
+    s.samplesPerPixel = 4096;
+    s.seed = 2;
+    const RenderOutput b = render(scene, s);
+    double sumZ2 = 0, meanLuminance = 0;
+    int within3 = 0;
+    const size_t n = a.image.rgb.size();
+    for (size_t i = 0; i < n; ++i) {
+        ASSERT_TRUE(std::isfinite(a.image.rgb[i]) && std::isfinite(b.image.rgb[i]));
+        const double var = double(a.varianceOfMean.rgb[i]) + b.varianceOfMean.rgb[i];
+        const double z = (a.image.rgb[i] - b.image.rgb[i]) / std::sqrt(std::max(var, 1e-12));
+        sumZ2 += z * z;
+        within3 += std::abs(z) < 3;
+        meanLuminance += b.image.rgb[i] / double(n);
+    }
+    EXPECT_GT(meanLuminance, 0.05);  // not black
+    EXPECT_NEAR(sumZ2 / double(n), 1.0, 0.2);
+    EXPECT_GT(double(within3) / double(n), 0.98);
+    // Classic look: the left wall is red, the right wall green.
+    const Vec3f left = b.image.at(2, 20), right = b.image.at(37, 20);
+    EXPECT_GT(left.x, 2 * left.y);
+    EXPECT_GT(right.y, 2 * right.x);
 }
 
 }  // namespace
