@@ -5,6 +5,7 @@
 #include "chi_square.h"
 #include "core/rng.h"
 #include "render/lights.h"
+#include "render/sampling_routines.h"
 
 namespace pathlab {
 namespace {
@@ -52,7 +53,7 @@ SceneDescription twoLightsAndSky() {
 }
 
 TEST(LightSet, MergesTrianglePairsIntoParallelograms) {
-    const LightSet lights(twoLightsAndSky(), 4.0f);
+    const LightSet lights(twoLightsAndSky(), Vec3f(0.0f));
     ASSERT_EQ(lights.areaLightCount(), 2u);
     EXPECT_TRUE(lights.areaLight(0).parallelogram);
     EXPECT_FLOAT_EQ(lights.areaLight(0).area, 4.0f);
@@ -66,7 +67,7 @@ TEST(LightSet, MergesTrianglePairsIntoParallelograms) {
 }
 
 TEST(LightSet, SampledDirectionsFollowReportedPdf) {
-    const LightSet lights(twoLightsAndSky(), 4.0f);
+    const LightSet lights(twoLightsAndSky(), Vec3f(0.0f));
     const Vec3f ref{0.2f, 0.1f, 0.3f};
     Pcg32 rng(21, 0);
     const auto result = testing::chiSquareTest(
@@ -95,7 +96,7 @@ TEST(LightSet, ChoosesLightsInProportionToPower) {
     SceneDescription s;
     s.meshes.push_back(quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, Vec3f(1.0f)));
     s.meshes.push_back(quad({-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}, Vec3f(3.0f)));
-    const LightSet lights(s, 4.0f);
+    const LightSet lights(s, Vec3f(0.0f));
     const Vec3f ref{0, 0, 0};
     // Both lights subtend the whole sampled area; compare choice via the pdf.
     const float pdf0 = lights.pdfAreaLight(0, ref, {0, 2, 0}) * 4.0f / 4.0f;
@@ -106,6 +107,23 @@ TEST(LightSet, ChoosesLightsInProportionToPower) {
         if (auto ls = lights.sample(ref, (i + 0.5f) / 1000, {0.5f, 0.5f}); ls && ls->distance < 2.5f)
             ++first;
     EXPECT_EQ(first, 250);
+}
+
+}  // namespace
+}  // namespace pathlab
+
+namespace pathlab {
+namespace {
+
+// The environment is chosen with the share of irradiance it gives the focus
+// point: a 2×2 light of radiance 1 straight above at distance 2 gives ≈ 1·4/4 = 1,
+// an environment of radiance 1/π gives π·(1/π) = 1, so each gets half.
+TEST(LightSet, EnvironmentShareFollowsIrradianceAtFocus) {
+    SceneDescription s;
+    s.meshes.push_back(quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, Vec3f(1.0f)));
+    s.environment = Vec3f(1.0f / kPi);
+    const LightSet lights(s, Vec3f(0.0f));
+    EXPECT_NEAR(lights.pdfEnvironment() / uniformSpherePdf(), 0.5f, 1e-5f);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ Vec3f AreaLight::emitted(Vec3f w) const {
     return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f);
 }
 
-LightSet::LightSet(const SceneDescription& scene, float sceneRadius)
+LightSet::LightSet(const SceneDescription& scene, Vec3f focus)
     : environment_(scene.environment) {
     triangleLight_.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -67,15 +67,40 @@ LightSet::LightSet(const SceneDescription& scene, float sceneRadius)
             }
         }
     }
-    std::vector<double> power;
-    for (const AreaLight& l : lights_) power.push_back(l.power());
-    if (!isBlack(environment_))
-        power.push_back(double(luminance(environment_)) * kPi * sceneRadius * sceneRadius * 4 * kPi);
+    buildDistribution(focus);
+}
+
+// Irradiance at `x` from light `l` if nothing blocked it, treating the light as
+// a point at its centroid (receiver orientation unknown: no receiver cosine).
+static double irradianceAt(const AreaLight& l, Vec3f x) {
+    const Vec3f centroid = l.p0 + (l.e1 + l.e2) * (l.parallelogram ? 0.5f : 1.0f / 3.0f);
+    const Vec3f d = x - centroid;
+    const float dist2 = std::max(dot(d, d), 1e-12f);
+    const float cosLight = l.twoSided ? std::abs(dot(l.n, d)) : std::max(0.0f, dot(l.n, d));
+    return double(luminance(l.radiance)) * l.area * cosLight / std::sqrt(dist2) / dist2;
+}
+
+void LightSet::buildDistribution(Vec3f focus) {
+    std::vector<double> weight;
+    double areaPower = 0, areaIrradiance = 0;
+    for (const AreaLight& l : lights_) {
+        weight.push_back(l.power());
+        areaPower += l.power();
+        areaIrradiance += irradianceAt(l, focus);
+    }
+    if (!isBlack(environment_)) {
+        // A uniform environment delivers π·L onto a surface facing any way.
+        const double envIrradiance = kPi * double(luminance(environment_));
+        const double share = areaPower > 0 && areaIrradiance > 0
+                                 ? envIrradiance / (envIrradiance + areaIrradiance)
+                                 : 1.0;
+        weight.push_back(share >= 1 ? 1.0 : areaPower * share / (1 - share));
+    }
     double total = 0;
-    for (double p : power) total += p;
+    for (double w : weight) total += w;
     if (total <= 0) return;
     double running = 0;
-    for (double p : power) cdf_.push_back(float((running += p) / total));
+    for (double w : weight) cdf_.push_back(float((running += w) / total));
     cdf_.back() = 1.0f;
 }
 

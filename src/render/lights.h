@@ -1,8 +1,12 @@
 // The scene's lights for next-event estimation: triangle and parallelogram area
 // lights (a mesh with emission; two triangles forming a parallelogram are merged
 // into one quad light so a 2D sample maps onto it without a seam) and a
-// constant environment. One light is chosen per estimate with probability
-// proportional to its emitted power (pbrt-v4's PowerLightSampler).
+// constant environment. One light is chosen per estimate: area lights in
+// proportion to their emitted power (pbrt-v4's PowerLightSampler). An
+// environment has no finite power (pbrt-v4 substitutes π·r²·4π·L for a scene
+// of radius r, which lets a wide floor hand it nearly every sample); here it
+// gets the share of the irradiance it delivers at the scene's focus point (the
+// camera's target) next to the area lights' unoccluded irradiance there.
 #pragma once
 
 #include <optional>
@@ -36,9 +40,8 @@ struct LightSample {
 
 class LightSet {
 public:
-    // sceneRadius bounds the scene, for the environment's power (pbrt-v4's
-    // UniformInfiniteLight::Phi uses π·r²·4π·L).
-    LightSet(const SceneDescription& scene, float sceneRadius);
+    // `focus` is where the environment's share of light choices is judged.
+    LightSet(const SceneDescription& scene, Vec3f focus);
 
     bool empty() const { return cdf_.empty(); }
     size_t areaLightCount() const { return lights_.size(); }
@@ -55,6 +58,7 @@ public:
 
 private:
     float pmf(size_t i) const;
+    void buildDistribution(Vec3f focus);
     std::vector<AreaLight> lights_;
     std::vector<std::vector<int>> triangleLight_;  // per mesh, per triangle
     Vec3f environment_;
