@@ -31,7 +31,7 @@ inline std::vector<Vec2f> drawPoints(const std::string& name, int n, int i, int 
                                      uint64_t seed = 0, Vec2i pixel = {0, 0},
                                      Vec2i resolution = {1, 1}) {
     AnySampler sampler = makeSampler(name, SamplerConfig{n, seed, resolution});
-    std::vector<Vec2f> pts(size_t(n));
+    std::vector<Vec2f> pts(static_cast<size_t>(n));
     std::visit(
         [&](auto& s) {
             for (int k = 0; k < n; ++k) pts[k] = sampleDimensions(s, pixel, k, i, j);

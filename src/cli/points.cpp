@@ -1,5 +1,7 @@
 // `pathlab points`: the points one pixel receives in two dimensions, as CSV, or
 // drawn beside their radially averaged power spectrum (SVG or PNG).
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +10,6 @@
 #include <memory>
 #include <regex>
 #include <sstream>
-#include <unistd.h>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -37,7 +38,8 @@ std::pair<int, int> parsePair(const std::string& text, const std::string& option
 
 std::string extensionOf(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
@@ -77,7 +79,8 @@ std::string svgDrawing(const std::vector<Vec2f>& pts, const std::vector<double>&
     std::ostringstream s;
     s.precision(5);
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << 2 * panel + gap + 2 * margin
-      << "\" height=\"" << panel + 2 * margin + 40 << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "\" height=\"" << panel + 2 * margin + 40
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << left << "\" y=\"" << margin << "\">" << title << "</text>\n"
       << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << panel << "\" height=\""
@@ -100,9 +103,9 @@ std::string svgDrawing(const std::vector<Vec2f>& pts, const std::vector<double>&
       << "stroke=\"#1f5fbf\" stroke-width=\"1.5\" points=\"";
     for (int r = 1; r <= f; ++r) s << px(r) << ',' << py(spectrum[r]) << ' ';
     s << "\"/>\n<text x=\"" << right << "\" y=\"" << top + panel + 18
-      << "\">radially averaged power spectrum: frequency 0.." << f << " (dashed: white noise), power 0.."
-      << ymax << "</text>\n<text x=\"" << left << "\" y=\"" << top + panel + 18
-      << "\">points in [0,1)^2</text>\n</svg>\n";
+      << "\">radially averaged power spectrum: frequency 0.." << f
+      << " (dashed: white noise), power 0.." << ymax << "</text>\n<text x=\"" << left << "\" y=\""
+      << top + panel + 18 << "\">points in [0,1)^2</text>\n</svg>\n";
     return s.str();
 }
 
@@ -142,7 +145,8 @@ Image pngDrawing(const std::vector<Vec2f>& pts, const std::vector<double>& spect
         const int steps = int(std::max(std::abs(x1 - x0), std::abs(y1 - y0))) * 2 + 1;
         for (int t = 0; t <= steps; ++t) {
             const double a = double(t) / steps;
-            const int x = int(std::lround(x0 + a * (x1 - x0))), y = int(std::lround(y0 + a * (y1 - y0)));
+            const int x = int(std::lround(x0 + a * (x1 - x0))),
+                      y = int(std::lround(y0 + a * (y1 - y0)));
             plot(x, y, blue), plot(x, y + 1, blue);
         }
     }
@@ -203,16 +207,19 @@ void runPoints(const PointsOptions& o) {
 void addPointsCommand(CLI::App& app) {
     auto opts = std::make_shared<PointsOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "points", "Write the points a pixel receives in two dimensions (CSV, or SVG/PNG with spectrum)");
-    cmd->add_option("--sampler", opts->sampler, "Sampler name (see `pathlab samplers`)")->required();
+        "points",
+        "Write the points a pixel receives in two dimensions (CSV, or SVG/PNG with spectrum)");
+    cmd->add_option("--sampler", opts->sampler, "Sampler name (see `pathlab samplers`)")
+        ->required();
     cmd->add_option("--count", opts->count, "Number of samples (indices 0..N-1)")->required();
     cmd->add_option("--dims", opts->dims, "Two dimensions I,J of the layout (0,1 = pixel)")
         ->required();
     cmd->add_option("--pixel", opts->pixel, "Pixel X,Y")->capture_default_str();
     cmd->add_option("--seed", opts->seed, "Seed")->capture_default_str();
     cmd->add_option("--spp", opts->spp, "Samples per pixel of the sampler (default: --count)");
-    cmd->add_option("--resolution", opts->resolution,
-                    "Image size WxH the sampler maps onto (default: the smallest containing the pixel)");
+    cmd->add_option(
+        "--resolution", opts->resolution,
+        "Image size WxH the sampler maps onto (default: the smallest containing the pixel)");
     cmd->add_option("-o,--output", opts->output, "Output file: .csv (index,x,y), .svg or .png")
         ->required();
     cmd->callback([opts] { runPoints(*opts); });

@@ -1,11 +1,12 @@
 #include "sampling/blue_noise.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "core/paths.h"
 #include "core/rng.h"
@@ -15,8 +16,9 @@ namespace {
 
 // The energy field of a binary pattern: Σ over its ones of a toroidal Gaussian.
 class EnergyField {
-public:
-    EnergyField(int size, double sigma) : size_(size), kernel_(size_t(size) * size), energy_(kernel_.size()) {
+  public:
+    EnergyField(int size, double sigma)
+        : size_(size), kernel_(size_t(size) * size), energy_(kernel_.size()) {
         for (int dy = 0; dy < size; ++dy)
             for (int dx = 0; dx < size; ++dx) {
                 const int ty = std::min(dy, size - dy), tx = std::min(dx, size - dx);
@@ -51,7 +53,7 @@ public:
         return static_cast<int>(best);
     }
 
-private:
+  private:
     int size_;
     std::vector<float> kernel_;
     std::vector<float> energy_;
@@ -135,8 +137,10 @@ std::shared_ptr<const BlueNoiseTexture> loadOrCreateBlueNoiseTexture(
         int32_t storedSize = 0;
         uint64_t storedSeed = 0;
         if (in.read(magic, 8) && std::equal(magic, magic + 8, kMagic) &&
-            in.read(reinterpret_cast<char*>(&storedSize), sizeof storedSize) && storedSize == size &&
-            in.read(reinterpret_cast<char*>(&storedSeed), sizeof storedSeed) && storedSeed == seed) {
+            in.read(reinterpret_cast<char*>(&storedSize), sizeof storedSize) &&
+            storedSize == size &&
+            in.read(reinterpret_cast<char*>(&storedSeed), sizeof storedSeed) &&
+            storedSeed == seed) {
             auto texture = std::make_shared<BlueNoiseTexture>();
             texture->size = size;
             texture->rank.resize(n);

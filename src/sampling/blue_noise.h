@@ -57,7 +57,7 @@ inline constexpr int kBlueNoiseTextureSize = 128;
 std::shared_ptr<const BlueNoiseTexture> defaultBlueNoiseTexture();
 
 class BlueNoiseSampler {
-public:
+  public:
     explicit BlueNoiseSampler(const SamplerConfig& c)
         : spp_(c.samplesPerPixel), seed_(c.seed), texture_(defaultBlueNoiseTexture()) {
         const uint64_t h = hashValues(c.seed, 0x424eu);
@@ -79,15 +79,15 @@ public:
     }
     Vec2f getPixel2D() { return get2D(); }
 
-private:
+  private:
     float sampleDimension(int d) const {
         const uint64_t size = uint64_t(texture_->size);
         const int vertex = dims::depthOfDimension(d);
         const uint64_t depth = uint64_t(vertex < 0 ? 0 : vertex);
         const uint64_t inBlock =
-            d < dims::kFirstBounce ? uint64_t(d)
-                                   : uint64_t(dims::kFirstBounce +
-                                              (d - dims::kFirstBounce) % dims::kDimsPerBounce);
+            d < dims::kFirstBounce
+                ? uint64_t(d)
+                : uint64_t(dims::kFirstBounce + (d - dims::kFirstBounce) % dims::kDimsPerBounce);
         const uint64_t x = uint64_t(uint32_t(pixel_.x)) + offsetX_;
         const uint64_t y = uint64_t(uint32_t(pixel_.y)) + offsetY_;
         const uint64_t row = (y + inBlock * 100937 + index_ * 1091 + depth * 133337) % size;

@@ -1,5 +1,8 @@
 #include "sampling/halton.h"
 
+#include <deque>
+#include <mutex>
+
 #include "core/rng.h"
 
 namespace pathlab {
@@ -39,6 +42,20 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed) {
         for (int k = 0; k < kMaxDigits; ++k)
             shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
     }
+}
+
+std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed) {
+    // The tables of the few most recently used seeds stay alive (a study
+    // renders one seed after another; tests switch seeds often).
+    static std::mutex mutex;
+    static std::deque<std::pair<uint64_t, std::shared_ptr<const HaltonDigitPermutations>>> recent;
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [s, tables] : recent)
+        if (s == seed) return tables;
+    auto tables = std::make_shared<const HaltonDigitPermutations>(seed);
+    recent.emplace_back(seed, tables);
+    if (recent.size() > 4) recent.pop_front();
+    return tables;
 }
 
 HaltonImageMapping::HaltonImageMapping(Vec2i resolution) {
@@ -89,8 +106,7 @@ float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* p
         invBaseM *= invBase;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
-                    kOneMinusEpsilon);
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
 }
 
 float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
@@ -110,8 +126,7 @@ float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutat
         invBaseM *= invBase;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
-                    kOneMinusEpsilon);
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
 }
 
 }  // namespace pathlab

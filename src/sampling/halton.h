@@ -48,13 +48,17 @@ enum class HaltonScrambling { None, RandomDigit, Owen };
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
     static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 25
-    std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
+    std::vector<uint32_t> offset;          // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
     std::vector<uint16_t> shifts;  // kMaxDigits per base: the per-position digit shifts
     explicit HaltonDigitPermutations(uint64_t seed);
     const uint16_t* forDimension(int d) const { return table.data() + offset[d]; }
     const uint16_t* shiftsForDimension(int d) const { return shifts.data() + d * kMaxDigits; }
 };
+
+// The tables for a seed, shared by every sampler built with it (building them
+// takes a few milliseconds and 7 MB).
+std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed);
 
 // The image-plane mapping shared by the three variants.
 struct HaltonImageMapping {
@@ -68,7 +72,7 @@ struct HaltonImageMapping {
 
 template <HaltonScrambling kScrambling>
 class HaltonSamplerT {
-public:
+  public:
     explicit HaltonSamplerT(const SamplerConfig& c);
 
     int samplesPerPixel() const { return spp_; }
@@ -92,7 +96,7 @@ public:
     // The value of dimension d of Halton index a (exposed for tests and tools).
     float sampleDimension(int d) const;
 
-private:
+  private:
     int spp_;
     uint64_t seed_;
     HaltonImageMapping mapping_;
@@ -116,7 +120,7 @@ template <HaltonScrambling kScrambling>
 HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
     : spp_(c.samplesPerPixel), seed_(c.seed), mapping_(c.resolution), primes_(primeTable()) {
     if constexpr (kScrambling != HaltonScrambling::None)
-        permutations_ = std::make_shared<const HaltonDigitPermutations>(c.seed);
+        permutations_ = haltonDigitPermutations(c.seed);
 }
 
 template <HaltonScrambling kScrambling>
@@ -130,8 +134,7 @@ float HaltonSamplerT<kScrambling>::sampleDimension(int d) const {
                                                   permutations_->forDimension(wrapped),
                                                   permutations_->shiftsForDimension(wrapped));
     } else {
-        return owenScrambledRadicalInverse(base, haltonIndex_,
-                                           permutations_->forDimension(wrapped),
+        return owenScrambledRadicalInverse(base, haltonIndex_, permutations_->forDimension(wrapped),
                                            hashValues(seed_, d, 0x4f57454eu));
     }
 }

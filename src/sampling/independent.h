@@ -12,7 +12,7 @@
 namespace pathlab {
 
 class IndependentSampler {
-public:
+  public:
     // Dimensions reserved per sample within one pixel's stream: 2^16 is far
     // beyond any path (7 per bounce), so samples never overlap.
     static constexpr int64_t kStreamStride = 65536;
@@ -31,7 +31,7 @@ public:
     }
     Vec2f getPixel2D() { return get2D(); }
 
-private:
+  private:
     int spp_;
     uint64_t seed_;
     Pcg32 rng_;

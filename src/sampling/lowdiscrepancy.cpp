@@ -38,8 +38,7 @@ float radicalInverse(int base, uint64_t a) {
         invBaseM *= invBase;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM),
-                    kOneMinusEpsilon);
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
 }
 
 int floatDigitCount(int base) {

@@ -17,7 +17,7 @@ namespace pathlab {
 // ---------------------------------------------------------------------------
 // Primes: the bases of the Halton sequence, dimension d using the d-th prime.
 inline constexpr int kPrimeTableSize = 1000;  // 2, 3, 5, …, 7919
-const int* primeTable();                       // kPrimeTableSize entries
+const int* primeTable();                      // kPrimeTableSize entries
 
 // ---------------------------------------------------------------------------
 // Bits.
@@ -30,10 +30,12 @@ constexpr uint32_t reverseBits32(uint32_t v) {
     return v;
 }
 
-// A 32-bit fixed-point fraction (value · 2^-32) as a float in [0, 1).
-inline float fixedPointToFloat(uint32_t v) {
-    const float f = static_cast<float>(v) * 0x1p-32f;
-    return f < kOneMinusEpsilon ? f : kOneMinusEpsilon;
+// A 32-bit fixed-point fraction (value · 2^-32) as a float in [0, 1). The low
+// 8 bits are truncated rather than rounded, so the result is exact, never 1,
+// and stays inside every dyadic interval the fixed-point value lies in —
+// rounding up could move a point into the next stratum.
+constexpr float fixedPointToFloat(uint32_t v) {
+    return static_cast<float>(v >> 8) * 0x1p-24f;
 }
 
 // Interleaves the bits of x and y (x in the even bits): the Morton (Z-order)
@@ -102,7 +104,9 @@ inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {
 
 // Random digital shift (XOR scrambling): flips the same bits of every point.
 // Preserves every elementary-interval stratification of a (t,m,s)-net.
-constexpr uint32_t xorScramble(uint32_t v, uint32_t seed) { return v ^ seed; }
+constexpr uint32_t xorScramble(uint32_t v, uint32_t seed) {
+    return v ^ seed;
+}
 
 // Hash-based Owen scrambling (Laine & Karras 2011, "Stratified sampling for
 // stochastic transparency"; Burley 2020, "Practical Hash-based Owen
@@ -134,8 +138,7 @@ constexpr uint32_t owenScramble(uint32_t v, uint32_t seed) {
 inline uint32_t permutationElement(uint32_t i, uint32_t n, uint64_t seed) {
     if (n <= 1) return 0;
     uint32_t mask = n - 1;
-    mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8,
-        mask |= mask >> 16;
+    mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
     const int bits = 32 - __builtin_clz(mask);
     const int shift = bits / 2 + 1;
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
@@ -155,6 +158,8 @@ inline uint32_t permutationElement(uint32_t i, uint32_t n, uint64_t seed) {
 }
 
 // 32-bit seed from a 64-bit hash (the two halves folded).
-constexpr uint32_t foldSeed(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
+constexpr uint32_t foldSeed(uint64_t h) {
+    return static_cast<uint32_t>(h ^ (h >> 32));
+}
 
 }  // namespace pathlab

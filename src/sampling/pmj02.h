@@ -41,7 +41,7 @@ struct Pmj02Tables {
 };
 
 class Pmj02Sampler {
-public:
+  public:
     explicit Pmj02Sampler(const SamplerConfig& c);
 
     int samplesPerPixel() const { return spp_; }
@@ -65,7 +65,7 @@ public:
     }
     Vec2f getPixel2D() { return get2D(); }
 
-private:
+  private:
     const uint32_t* lookup(uint64_t h) const {
         const int instance = static_cast<int>((h >> 40) % Pmj02Tables::kInstances);
         return tables_->point(instance, (index_ ^ static_cast<uint32_t>(h)) & mask_);

@@ -18,7 +18,7 @@
 
 namespace pathlab {
 
-// The dimension layout, fixed for every sampler (see docs/dimensions.md).
+// The dimension layout, fixed for every sampler (see docs/rendering.md).
 // startPixelSample(pixel, index, 0) is followed by getPixel2D() (dims 0,1), then
 // one block of kDimsPerBounce dimensions per path vertex, in this order:
 //   +0      light choice (1D)           — which light next-event estimation samples
@@ -38,7 +38,9 @@ inline constexpr int kBsdfDirection = 4;
 inline constexpr int kRoulette = 6;
 inline constexpr int kDimsPerBounce = 7;
 // First dimension of the block of path vertex `depth` (0 = the camera ray's hit).
-constexpr int bounceBase(int depth) { return kFirstBounce + depth * kDimsPerBounce; }
+constexpr int bounceBase(int depth) {
+    return kFirstBounce + depth * kDimsPerBounce;
+}
 // The path depth a dimension belongs to (-1 for the pixel dimensions).
 constexpr int depthOfDimension(int dim) {
     return dim < kFirstBounce ? -1 : (dim - kFirstBounce) / kDimsPerBounce;

@@ -42,8 +42,8 @@ namespace pathlab {
 
 // Which indices of a global Sobol' sequence fall into which pixel.
 struct SobolImageMapping {
-    int log2Scale = 0;              // m
-    uint64_t inverse[32] = {};      // columns of the inverse of the 2m × 2m map
+    int log2Scale = 0;          // m
+    uint64_t inverse[32] = {};  // columns of the inverse of the 2m × 2m map
     explicit SobolImageMapping(const uint32_t* matrices, Vec2i resolution);
     // The Gray-coded Sobol' index of sample `frame` of pixel p.
     uint64_t index(const uint32_t* matrices, Vec2i p, uint64_t frame) const;
@@ -53,7 +53,7 @@ enum class SobolScrambling { None, Xor };
 
 template <SobolScrambling kScrambling>
 class GlobalSobolSamplerT {
-public:
+  public:
     explicit GlobalSobolSamplerT(const SamplerConfig& c)
         : spp_(c.samplesPerPixel),
           seed_(c.seed),
@@ -82,7 +82,7 @@ public:
         return {fixedPointToFloat(m == 0 ? x : x << m), fixedPointToFloat(m == 0 ? y : y << m)};
     }
 
-private:
+  private:
     float sampleDimension(int d) const {
         const int wrapped = d < kSobolDimensions ? d : 2 + (d - 2) % (kSobolDimensions - 2);
         uint32_t v = sobolBits(matrices_, sobolIndex_, wrapped);
@@ -105,7 +105,7 @@ using XorSobolSampler = GlobalSobolSamplerT<SobolScrambling::Xor>;
 
 // `sobol-owen`: padded, shuffled, Owen-scrambled Sobol' (Burley 2020).
 class OwenSobolSampler {
-public:
+  public:
     explicit OwenSobolSampler(const SamplerConfig& c)
         : spp_(c.samplesPerPixel), seed_(c.seed), matrices_(sobolMatrices()) {}
 
@@ -130,7 +130,7 @@ public:
     }
     Vec2f getPixel2D() { return get2D(); }
 
-private:
+  private:
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
@@ -141,7 +141,7 @@ private:
 
 // `zsobol`: Morton-ordered, base-4-digit-permuted, Owen-scrambled Sobol'.
 class ZSobolSampler {
-public:
+  public:
     explicit ZSobolSampler(const SamplerConfig& c);
 
     int samplesPerPixel() const { return spp_; }
@@ -159,9 +159,9 @@ public:
         const uint64_t index = sampleIndex(dimension_);
         const uint64_t seeds = hashValues(dimension_, seed_, 0x5a32u);
         dimension_ += 2;
-        return {fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), uint32_t(seeds))),
-                fixedPointToFloat(
-                    owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
+        return {
+            fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), uint32_t(seeds))),
+            fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
     }
     Vec2f getPixel2D() { return get2D(); }
 
@@ -170,7 +170,7 @@ public:
     // by the digits above it).
     uint64_t sampleIndex(int dimension) const;
 
-private:
+  private:
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;

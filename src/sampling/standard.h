@@ -20,7 +20,7 @@ namespace pathlab {
 using MinimalStandardEngine = std::linear_congruential_engine<uint32_t, 16807, 0, 2147483647>;
 
 class StandardSampler {
-public:
+  public:
     explicit StandardSampler(const SamplerConfig& c) : spp_(c.samplesPerPixel), seed_(c.seed) {}
 
     int samplesPerPixel() const { return spp_; }
@@ -42,7 +42,7 @@ public:
     }
     Vec2f getPixel2D() { return get2D(); }
 
-private:
+  private:
     int spp_;
     uint64_t seed_;
     MinimalStandardEngine engine_;

@@ -17,7 +17,7 @@
 namespace pathlab {
 
 class StratifiedSampler {
-public:
+  public:
     explicit StratifiedSampler(const SamplerConfig& c)
         : spp_(std::max(1, c.samplesPerPixel)), seed_(c.seed) {
         int nx = 1;
@@ -52,7 +52,7 @@ public:
     int xStrata() const { return xStrata_; }
     int yStrata() const { return yStrata_; }
 
-private:
+  private:
     uint64_t strataHash() const { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); }
     static float clampSample(float v) { return v < kOneMinusEpsilon ? v : kOneMinusEpsilon; }
 
