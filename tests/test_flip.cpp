@@ -51,7 +51,8 @@ Image withNoise(const Image& in, float amplitude, uint32_t seed, bool multiplica
     Image out = in;
     for (size_t i = 0; i < out.rgb.size(); ++i) {
         const float n = amplitude * (2.0f * hash01(uint32_t(i) * 3u + seed * 0x9e3779b9u) - 1.0f);
-        out.rgb[i] = multiplicative ? out.rgb[i] * (1.0f + n) : std::clamp(out.rgb[i] + n, 0.0f, 1.0f);
+        out.rgb[i] =
+            multiplicative ? out.rgb[i] * (1.0f + n) : std::clamp(out.rgb[i] + n, 0.0f, 1.0f);
     }
     return out;
 }
@@ -154,7 +155,9 @@ TEST(FlipFilters, CsfWeightsSumToOneAndFollowTheGaussians) {
     // 3·sqrt(b_max / 2π²)·ppd with b_max = 0.04 → ⌈9.05⌉ = 10.
     EXPECT_EQ(f.radius, 10);
     ASSERT_EQ(f.achromatic.size(), 21u);
-    const auto sum = [](const std::vector<float>& v) { return std::accumulate(v.begin(), v.end(), 0.0); };
+    const auto sum = [](const std::vector<float>& v) {
+        return std::accumulate(v.begin(), v.end(), 0.0);
+    };
     EXPECT_NEAR(sum(f.achromatic), 1.0, 1e-6);
     EXPECT_NEAR(sum(f.redGreen), 1.0, 1e-6);
     // The 2-D blue–yellow kernel Σ_xy g1(x)g1(y) + g2(x)g2(y) sums to 1.
@@ -166,9 +169,9 @@ TEST(FlipFilters, CsfWeightsSumToOneAndFollowTheGaussians) {
     EXPECT_NEAR(f.redGreen[12] / f.redGreen[10], std::exp(-4 * pi2 / (0.0053 * ppd * ppd)), 1e-5);
     EXPECT_NEAR(f.blueYellow2[11] / f.blueYellow2[10], std::exp(-pi2 / (0.025 * ppd * ppd)), 1e-5);
     // Relative weight of the two blue–yellow lobes: sqrt(a·sqrt(π/b)).
-    EXPECT_NEAR(f.blueYellow1[10] / f.blueYellow2[10],
-                std::sqrt(34.1 * std::sqrt(M_PI / 0.04)) / std::sqrt(13.5 * std::sqrt(M_PI / 0.025)),
-                1e-5);
+    EXPECT_NEAR(
+        f.blueYellow1[10] / f.blueYellow2[10],
+        std::sqrt(34.1 * std::sqrt(M_PI / 0.04)) / std::sqrt(13.5 * std::sqrt(M_PI / 0.025)), 1e-5);
     for (int i = 0; i < 21; ++i) EXPECT_FLOAT_EQ(f.achromatic[i], f.achromatic[20 - i]);
 }
 
@@ -355,8 +358,8 @@ TEST(FlipMetric, MatchesNvidiaReferenceImplementation) {
     // double). Our error maps matched that build bit for bit.
     const Image ldr = patternImage(64, 48, 0.0f), hdr = patternImage(64, 48, 30.0f);
     flip::Options o;
-    EXPECT_NEAR(flip::evaluate(ldr, withNoise(ldr, 0.1f, 1, false), o).stats.mean,
-                0.111275466, 1e-6);
+    EXPECT_NEAR(flip::evaluate(ldr, withNoise(ldr, 0.1f, 1, false), o).stats.mean, 0.111275466,
+                1e-6);
     o.mode = flip::Mode::Hdr;
     const flip::Result h = flip::evaluate(hdr, withNoise(hdr, 0.3f, 2, true), o);
     EXPECT_NEAR(h.stats.mean, 0.111393817, 1e-6);
@@ -381,7 +384,8 @@ TEST(FlipErrorMap, MagmaEndpointsAndExactPngEncoding) {
     for (int i = 0; i < 256; ++i) {
         const auto c = magmaSrgb(ramp[i]);
         for (int k = 0; k < 3; ++k)
-            EXPECT_EQ(std::lround(linearToSrgb(img.rgb[3 * i + k]) * 255.0f), int(c[k] * 255.0f + 0.5f))
+            EXPECT_EQ(std::lround(linearToSrgb(img.rgb[3 * i + k]) * 255.0f),
+                      int(c[k] * 255.0f + 0.5f))
                 << "entry " << i;
     }
     // EXR error maps keep the raw values.

@@ -17,7 +17,9 @@ Image gradientImage(int w, int h) {
     Image img(w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            img.set(x, y, {float(x) / float(w), float(y) / float(h), float((x * 7 + y * 3) % 11) / 10.0f});
+            img.set(
+                x, y,
+                {float(x) / float(w), float(y) / float(h), float((x * 7 + y * 3) % 11) / 10.0f});
     return img;
 }
 
@@ -87,7 +89,7 @@ TEST(PixelMetric, ResultsDoNotDependOnThreadCount) {
 TEST(PixelMetric, CountsNonFinitePixels) {
     Image img = gradientImage(4, 4);
     img.rgb[0] = std::numeric_limits<float>::quiet_NaN();
-    img.rgb[2] = std::numeric_limits<float>::infinity();   // same pixel
+    img.rgb[2] = std::numeric_limits<float>::infinity();    // same pixel
     img.rgb[10] = -std::numeric_limits<float>::infinity();  // pixel 3
     img.rgb[20] = std::numeric_limits<float>::quiet_NaN();  // pixel 6
     EXPECT_EQ(countNonFinitePixels(img), 3u);

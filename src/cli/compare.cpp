@@ -30,7 +30,9 @@ struct CompareResults {
     std::unique_ptr<flip::Result> flip;
 };
 
-bool wants(const CompareArgs& a, const char* metric) { return a.metric == "all" || a.metric == metric; }
+bool wants(const CompareArgs& a, const char* metric) {
+    return a.metric == "all" || a.metric == metric;
+}
 
 CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const Image& test) {
     CompareResults out;
@@ -53,21 +55,19 @@ CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const I
 }
 
 // JSON has no infinity: PSNR of identical images is written as null.
-nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+nlohmann::json finiteOrNull(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
 
 nlohmann::json flipJson(const flip::Result& f) {
-    nlohmann::json j = {{"mean", f.stats.mean},
-                        {"weighted_median", f.stats.weightedMedian},
-                        {"q1", f.stats.q1},
-                        {"q3", f.stats.q3},
-                        {"min", f.stats.min},
-                        {"max", f.stats.max},
-                        {"ppd", f.ppd},
-                        {"mode", f.mode == flip::Mode::Ldr ? "ldr" : "hdr"}};
+    nlohmann::json j = {
+        {"mean", f.stats.mean}, {"weighted_median", f.stats.weightedMedian},
+        {"q1", f.stats.q1},     {"q3", f.stats.q3},
+        {"min", f.stats.min},   {"max", f.stats.max},
+        {"ppd", f.ppd},         {"mode", f.mode == flip::Mode::Ldr ? "ldr" : "hdr"}};
     if (f.mode == flip::Mode::Hdr)
-        j["exposures"] = {{"start", f.exposures.start},
-                          {"stop", f.exposures.stop},
-                          {"count", f.exposures.count}};
+        j["exposures"] = {
+            {"start", f.exposures.start}, {"stop", f.exposures.stop}, {"count", f.exposures.count}};
     else
         j["exposures"] = nullptr;
     return j;
@@ -98,14 +98,15 @@ void printText(const CompareArgs& args, const CompareResults& r) {
     }
     if (r.flip) {
         const flip::Result& f = *r.flip;
-        std::printf("flip    mean %.6f  weighted median %.6f  q1 %.6f  q3 %.6f  min %.6f  max %.6f\n",
-                    f.stats.mean, f.stats.weightedMedian, f.stats.q1, f.stats.q3, f.stats.min,
-                    f.stats.max);
+        std::printf(
+            "flip    mean %.6f  weighted median %.6f  q1 %.6f  q3 %.6f  min %.6f  max %.6f\n",
+            f.stats.mean, f.stats.weightedMedian, f.stats.q1, f.stats.q3, f.stats.min, f.stats.max);
         if (f.mode == flip::Mode::Ldr)
             std::printf("        LDR-FLIP at %.2f pixels per degree\n", f.ppd);
         else
-            std::printf("        HDR-FLIP at %.2f pixels per degree, %d exposures from %.4f to %.4f\n",
-                        f.ppd, f.exposures.count, f.exposures.start, f.exposures.stop);
+            std::printf(
+                "        HDR-FLIP at %.2f pixels per degree, %d exposures from %.4f to %.4f\n",
+                f.ppd, f.exposures.count, f.exposures.start, f.exposures.stop);
     }
 }
 
@@ -140,10 +141,12 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--error-map", args->errorMap,
                     "Write the FLIP error map: .png in the magma colour map, .exr/.pfm raw values");
     auto* ldr = cmd->add_flag("--ldr", args->ldr, "Force LDR-FLIP (inputs clamped to [0,1])");
-    auto* hdr = cmd->add_flag("--hdr", args->hdr, "Force HDR-FLIP (exposure range from the reference)");
+    auto* hdr =
+        cmd->add_flag("--hdr", args->hdr, "Force HDR-FLIP (exposure range from the reference)");
     ldr->excludes(hdr);
-    cmd->add_option("--ppd", args->ppd,
-                    "FLIP pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 3840 px display)")
+    cmd->add_option(
+           "--ppd", args->ppd,
+           "FLIP pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 3840 px display)")
         ->check(CLI::PositiveNumber);
     cmd->callback([args] { runCompare(*args); });
 }

@@ -4,8 +4,7 @@
 
 namespace pathlab {
 
-Image errorMapImage(const std::vector<float>& errors, int width, int height,
-                    ImageFormat target) {
+Image errorMapImage(const std::vector<float>& errors, int width, int height, ImageFormat target) {
     Image image(width, height);
     for (size_t i = 0; i < image.pixelCount(); ++i) {
         if (target == ImageFormat::Png) {

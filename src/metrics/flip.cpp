@@ -72,27 +72,45 @@ void padRow(const float* in, int width, int radius, std::vector<float>& padded) 
     for (int i = 0; i < radius; ++i) padded[size_t(radius) + width + i] = in[width - 1];
 }
 
-// out[x] = Σ_k w[k]·padded[x+k], taps accumulated in ascending order for every
-// pixel (vectorises over x).
-void convolveRow(const std::vector<float>& padded, const std::vector<float>& weights, int width,
-                 float* out) {
-    std::fill(out, out + width, 0.0f);
-    for (size_t k = 0; k < weights.size(); ++k) {
-        const float w = weights[k];
-        const float* src = padded.data() + k;
-        for (int x = 0; x < width; ++x) out[x] += w * src[x];
+// out[x] = Σ_k w[k]·sources[k][x], taps accumulated in ascending k for every
+// pixel. Pixels are processed in blocks whose sums stay in registers; the
+// per-pixel order of operations is the same as a plain loop over k.
+void weightedSum(const std::vector<const float*>& sources, const std::vector<float>& weights,
+                 int width, float* __restrict out) {
+    constexpr int kBlock = 16;
+    const size_t taps = weights.size();
+    int x0 = 0;
+    for (; x0 + kBlock <= width; x0 += kBlock) {
+        float sum[kBlock] = {};
+        for (size_t k = 0; k < taps; ++k) {
+            const float w = weights[k];
+            const float* __restrict src = sources[k] + x0;
+            for (int i = 0; i < kBlock; ++i) sum[i] += w * src[i];
+        }
+        std::copy(sum, sum + kBlock, out + x0);
+    }
+    for (int x = x0; x < width; ++x) {
+        float sum = 0.0f;
+        for (size_t k = 0; k < taps; ++k) sum += weights[k] * sources[k][x];
+        out[x] = sum;
     }
 }
 
-// out[x] = Σ_k w[k]·in(x, clamp(y+k−r)), the vertical counterpart.
+// Horizontal convolution of a padded row: out[x] = Σ_k w[k]·padded[x+k].
+void convolveRow(const std::vector<float>& padded, const std::vector<float>& weights, int width,
+                 float* out) {
+    std::vector<const float*> sources(weights.size());
+    for (size_t k = 0; k < weights.size(); ++k) sources[k] = padded.data() + k;
+    weightedSum(sources, weights, width, out);
+}
+
+// Vertical convolution: out[x] = Σ_k w[k]·in(x, clamp(y+k−r)).
 void convolveColumn(const Plane& in, int y, const std::vector<float>& weights, float* out) {
     const int radius = int(weights.size() / 2);
-    std::fill(out, out + in.width, 0.0f);
-    for (size_t k = 0; k < weights.size(); ++k) {
-        const float w = weights[k];
-        const float* src = in.row(std::clamp(y + int(k) - radius, 0, in.height - 1));
-        for (int x = 0; x < in.width; ++x) out[x] += w * src[x];
-    }
+    std::vector<const float*> sources(weights.size());
+    for (size_t k = 0; k < weights.size(); ++k)
+        sources[k] = in.row(std::clamp(y + int(k) - radius, 0, in.height - 1));
+    weightedSum(sources, weights, in.width, out);
 }
 
 YcxczPlanes toYcxcz(const Image& image) {
@@ -165,7 +183,8 @@ Plane colorDifference(const YcxczPlanes& reference, const YcxczPlanes& test, flo
         filterCsfVertically(refHalf, filters, y, refRow);
         filterCsfVertically(testHalf, filters, y, testRow);
         for (int x = 0; x < w; ++x) {
-            const float distance = hyab(filteredToHuntLab(refRow, x), filteredToHuntLab(testRow, x));
+            const float distance =
+                hyab(filteredToHuntLab(refRow, x), filteredToHuntLab(testRow, x));
             out.row(y)[x] = remapColorDifference(std::pow(distance, kColorExponent), cmax);
         }
     });
@@ -281,11 +300,40 @@ ExposureRange resolveExposures(const Image& reference, const Options& options) {
     if (options.stopExposure) range.stop = *options.stopExposure;
     if (!(range.start <= range.stop))
         throw InputError("start exposure must not exceed stop exposure");
-    range.count = options.exposureCount
-                      ? *options.exposureCount
-                      : int(std::max(2.0f, std::ceil(range.stop - range.start)));
+    range.count = options.exposureCount ? *options.exposureCount
+                                        : int(std::max(2.0f, std::ceil(range.stop - range.start)));
     if (range.count < 2) throw InputError("HDR-FLIP needs at least 2 exposures");
     return range;
+}
+
+// The weighted p-quantiles (ascending fractions) of errors in [0,1] without a
+// full sort: errors are binned by value, so bins in order are the sorted
+// order; only the bin where a running sum crosses p·total is sorted.
+std::vector<double> weightedPercentiles(const std::vector<float>& errors,
+                                        const std::vector<double>& fractions) {
+    constexpr int kBins = 4096;
+    auto binOf = [](float e) { return std::clamp(int(e * float(kBins)), 0, kBins - 1); };
+    std::vector<double> binSums(kBins, 0.0);
+    double total = 0;
+    for (float e : errors) binSums[binOf(e)] += e, total += e;
+    std::vector<double> result(fractions.size(), 0.0);
+    size_t next = 0;
+    double running = 0;
+    for (int b = 0; b < kBins && next < fractions.size(); ++b) {
+        if (!(running + binSums[b] > fractions[next] * total)) {
+            running += binSums[b];
+            continue;
+        }
+        std::vector<float> bin;
+        for (float e : errors)
+            if (binOf(e) == b) bin.push_back(e);
+        std::sort(bin.begin(), bin.end());
+        for (float e : bin) {
+            running += e;
+            while (next < fractions.size() && running > fractions[next] * total) result[next++] = e;
+        }
+    }
+    return result;
 }
 
 }  // namespace
@@ -294,7 +342,9 @@ float pixelsPerDegree(float distanceMeters, float displayWidthMeters, float disp
     return distanceMeters * (displayWidthPixels / displayWidthMeters) * (kPi / 180.0f);
 }
 
-float defaultPixelsPerDegree() { return pixelsPerDegree(0.7f, 0.7f, 3840.0f); }
+float defaultPixelsPerDegree() {
+    return pixelsPerDegree(0.7f, 0.7f, 3840.0f);
+}
 
 CsfFilters makeCsfFilters(float ppd) {
     // Radius: three standard deviations of the widest Gaussian; b = 2π²σ².
@@ -334,7 +384,7 @@ FeatureFilters makeFeatureFilters(float ppd) {
     for (int i = 0; i < width; ++i) {
         const float x = float(i - f.radius);
         const float g = std::exp(-(x * x) / (2.0f * sigma * sigma));
-        const float d1 = -x * g;                                 // ∝ dG/dx
+        const float d1 = -x * g;                                // ∝ dG/dx
         const float d2 = (x * x / (sigma * sigma) - 1.0f) * g;  // ∝ d²G/dx²
         f.gaussian[i] = g, f.firstDerivative[i] = d1, f.secondDerivative[i] = d2;
         sumG += g;
@@ -351,8 +401,7 @@ FeatureFilters makeFeatureFilters(float ppd) {
     return f;
 }
 
-FeatureMaps detectFeatures(const std::vector<float>& achromatic, int width, int height,
-                           float ppd) {
+FeatureMaps detectFeatures(const std::vector<float>& achromatic, int width, int height, float ppd) {
     Plane in(width, height);
     in.values = achromatic;
     const FeatureFilters filters = makeFeatureFilters(ppd);
@@ -375,7 +424,8 @@ float maxColorDistance() {
 float remapColorDifference(float poweredDistance, float cmax) {
     const float knee = kColorKnee * cmax;
     if (poweredDistance < knee) return poweredDistance * (kColorKneeTarget / knee);
-    return kColorKneeTarget + ((poweredDistance - knee) / (cmax - knee)) * (1.0f - kColorKneeTarget);
+    return kColorKneeTarget +
+           ((poweredDistance - knee) / (cmax - knee)) * (1.0f - kColorKneeTarget);
 }
 
 float acesToneMap(float v) {
@@ -433,36 +483,19 @@ std::vector<float> hdrFlipErrorMap(const Image& reference, const Image& test, fl
 }
 
 double weightedPercentile(std::vector<float> errors, double p) {
-    std::sort(errors.begin(), errors.end());
-    double total = 0;
-    for (float e : errors) total += e;
-    double running = 0;
-    for (float e : errors) {
-        running += e;
-        if (running > p * total) return e;
-    }
-    return 0.0;
+    return weightedPercentiles(errors, {p})[0];
 }
 
 Statistics poolErrors(const std::vector<float>& errors) {
     Statistics s;
     if (errors.empty()) return s;
-    std::vector<float> sorted = errors;
-    std::sort(sorted.begin(), sorted.end());
     double total = 0;
-    for (float e : errors) total += e;  // image order: independent of sorting
+    float lo = errors[0], hi = errors[0];
+    for (float e : errors) total += e, lo = std::min(lo, e), hi = std::max(hi, e);
     s.mean = total / double(errors.size());
-    s.min = sorted.front(), s.max = sorted.back();
-    double sortedTotal = 0;
-    for (float e : sorted) sortedTotal += e;
-    double* targets[3] = {&s.q1, &s.weightedMedian, &s.q3};
-    const double fractions[3] = {0.25, 0.5, 0.75};
-    double running = 0;
-    int next = 0;
-    for (size_t i = 0; i < sorted.size() && next < 3; ++i) {
-        running += sorted[i];
-        while (next < 3 && running > fractions[next] * sortedTotal) *targets[next++] = sorted[i];
-    }
+    s.min = lo, s.max = hi;
+    const std::vector<double> q = weightedPercentiles(errors, {0.25, 0.5, 0.75});
+    s.q1 = q[0], s.weightedMedian = q[1], s.q3 = q[2];
     return s;
 }
 

@@ -76,8 +76,12 @@ inline Color xyzToLab(Color c) {
     return {116.0f * fy - 16.0f, 500.0f * (fx - fy), 200.0f * (fy - fz)};
 }
 
-inline Color linearRgbToYcxcz(Color c) { return xyzToYcxcz(linearRgbToXyz(c)); }
-inline Color linearRgbToLab(Color c) { return xyzToLab(linearRgbToXyz(c)); }
+inline Color linearRgbToYcxcz(Color c) {
+    return xyzToYcxcz(linearRgbToXyz(c));
+}
+inline Color linearRgbToLab(Color c) {
+    return xyzToLab(linearRgbToXyz(c));
+}
 
 // Hunt effect (HPG 2020, colour pipeline): chroma appears weaker at low
 // luminance, so a* and b* are scaled by 0.01·L*.

@@ -76,8 +76,8 @@ size_t countNonFinitePixels(const Image& image) {
     return count;
 }
 
-void requireComparable(const Image& reference, const Image& test,
-                       const std::string& referenceName, const std::string& testName) {
+void requireComparable(const Image& reference, const Image& test, const std::string& referenceName,
+                       const std::string& testName) {
     if (reference.width != test.width || reference.height != test.height)
         throw InputError("images differ in size: '" + referenceName + "' is " +
                          std::to_string(reference.width) + "x" + std::to_string(reference.height) +

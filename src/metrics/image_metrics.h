@@ -30,8 +30,8 @@ size_t countNonFinitePixels(const Image& image);
 
 // Throws InputError (naming the files) unless both images have the same size
 // and only finite values.
-void requireComparable(const Image& reference, const Image& test,
-                       const std::string& referenceName, const std::string& testName);
+void requireComparable(const Image& reference, const Image& test, const std::string& referenceName,
+                       const std::string& testName);
 
 // FLIP's mode for a pair of files: HDR when either is EXR or PFM (linear,
 // unbounded), LDR when both are PNG (display-referred sRGB).

@@ -1,0 +1,219 @@
+// `pathlab compare` end to end: output formats, mode selection and errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "core/image.h"
+
+namespace pathlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+class CompareCli : public ::testing::Test {
+  protected:
+    fs::path dir;
+
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("pathlab_compare_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+
+    RunResult run(const std::string& args) const {
+        const std::string cmd = std::string(PATHLAB_BINARY) + " compare " + args + " >" +
+                                path("stdout.txt") + " 2>" + path("stderr.txt");
+        RunResult r;
+        const int status = std::system(cmd.c_str());
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(dir / "stdout.txt");
+        r.err = slurp(dir / "stderr.txt");
+        return r;
+    }
+
+    // A small image with some structure; `offset` changes it a little.
+    std::string writePattern(const std::string& name, int w, int h, float offset,
+                             float scale = 1.0f) const {
+        Image img(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float v = ((x / 4 + y / 4) % 2 ? 0.7f : 0.2f) + 0.02f * float(x % 5) +
+                                offset * float((x * y) % 3);
+                img.set(x, y, Vec3f(v * scale, 0.5f * v * scale, 0.3f * scale));
+            }
+        writeImage(path(name), img);
+        return path(name);
+    }
+};
+
+int countLines(const std::string& s) {
+    return int(std::count(s.begin(), s.end(), '\n'));
+}
+
+TEST_F(CompareCli, JsonForPngPairHasEveryMetricInLdrMode) {
+    const std::string a = writePattern("a.png", 32, 24, 0.0f),
+                      b = writePattern("b.png", 32, 24, 0.05f);
+    const RunResult r = run(a + " " + b + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"mse", "rmse", "relmse", "psnr"})
+        EXPECT_GT(j[key].get<double>(), 0) << key;
+    EXPECT_EQ(j["relmse_epsilon"].get<double>(), 0.01);
+    const auto& f = j["flip"];
+    EXPECT_EQ(f["mode"], "ldr");
+    EXPECT_NEAR(f["ppd"].get<double>(), 67.02, 0.01);
+    EXPECT_GT(f["mean"].get<double>(), 0);
+    EXPECT_LE(f["min"].get<double>(), f["q1"].get<double>());
+    EXPECT_LE(f["q1"].get<double>(), f["weighted_median"].get<double>());
+    EXPECT_LE(f["weighted_median"].get<double>(), f["q3"].get<double>());
+    EXPECT_LE(f["q3"].get<double>(), f["max"].get<double>());
+    EXPECT_TRUE(f["exposures"].is_null());
+}
+
+TEST_F(CompareCli, JsonForExrPairIsHdrWithExposureRange) {
+    const std::string a = writePattern("a.exr", 32, 24, 0.0f, 8.0f);
+    const std::string b = writePattern("b.exr", 32, 24, 0.05f, 8.0f);
+    const RunResult r = run(a + " " + b + " --json --metric flip");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(j.contains("mse"));
+    EXPECT_EQ(j["flip"]["mode"], "hdr");
+    const auto& e = j["flip"]["exposures"];
+    EXPECT_LT(e["start"].get<double>(), e["stop"].get<double>());
+    EXPECT_GE(e["count"].get<int>(), 2);
+}
+
+TEST_F(CompareCli, ModeCanBeOverridden) {
+    const std::string a = writePattern("a.exr", 16, 16, 0.0f),
+                      b = writePattern("b.exr", 16, 16, 0.1f);
+    EXPECT_EQ(nlohmann::json::parse(run(a + " " + b + " --json --ldr").out)["flip"]["mode"], "ldr");
+    const std::string c = writePattern("c.png", 16, 16, 0.0f),
+                      d = writePattern("d.png", 16, 16, 0.1f);
+    EXPECT_EQ(nlohmann::json::parse(run(c + " " + d + " --json --hdr").out)["flip"]["mode"], "hdr");
+    EXPECT_EQ(run(c + " " + d + " --ldr --hdr").exitCode, 2);
+}
+
+TEST_F(CompareCli, SingleMetricAndIdenticalImages) {
+    const std::string a = writePattern("a.png", 16, 16, 0.0f);
+    const RunResult r = run(a + " " + a + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["mse"].get<double>(), 0.0);
+    EXPECT_EQ(j["relmse"].get<double>(), 0.0);
+    EXPECT_TRUE(j["psnr"].is_null());  // infinite
+    EXPECT_EQ(j["flip"]["mean"].get<double>(), 0.0);
+    const auto only = nlohmann::json::parse(run(a + " " + a + " --json --metric relmse").out);
+    EXPECT_TRUE(only.contains("relmse") && only.contains("relmse_epsilon"));
+    EXPECT_FALSE(only.contains("mse") || only.contains("flip") || only.contains("psnr"));
+}
+
+TEST_F(CompareCli, TextOutputIsAFewReadableLines) {
+    const std::string a = writePattern("a.png", 16, 16, 0.0f),
+                      b = writePattern("b.png", 16, 16, 0.1f);
+    const RunResult r = run(a + " " + b);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("mse"), std::string::npos);
+    EXPECT_NE(r.out.find("psnr"), std::string::npos);
+    EXPECT_NE(r.out.find("flip    mean"), std::string::npos);
+    EXPECT_LE(countLines(r.out), 8);
+}
+
+TEST_F(CompareCli, WritesMagmaErrorMap) {
+    const std::string a = writePattern("a.png", 20, 12, 0.0f),
+                      b = writePattern("b.png", 20, 12, 0.1f);
+    const RunResult r = run(a + " " + b + " --metric flip --error-map " + path("map.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image map = readImage(path("map.png"));
+    EXPECT_EQ(map.width, 20);
+    EXPECT_EQ(map.height, 12);
+    // Identical images: every pixel is magma's first (near-black) entry.
+    ASSERT_EQ(run(a + " " + a + " --error-map " + path("zero.png")).exitCode, 0);
+    const Image zero = readImage(path("zero.png"));
+    for (float v : zero.rgb) EXPECT_LT(v, 0.002f);
+}
+
+TEST_F(CompareCli, DifferentSizesFailWithOneLineAndNoMap) {
+    const std::string a = writePattern("a.png", 16, 16, 0.0f),
+                      b = writePattern("b.png", 16, 12, 0.0f);
+    const RunResult r = run(a + " " + b + " --error-map " + path("map.png"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("16x12"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_FALSE(fs::exists(path("map.png")));
+}
+
+TEST_F(CompareCli, UnreadableFilesFail) {
+    const std::string a = writePattern("a.png", 8, 8, 0.0f);
+    RunResult r = run(a + " " + path("missing.png"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("missing.png"), std::string::npos);
+    std::ofstream(path("junk.png")) << "not a png";
+    r = run(a + " " + path("junk.png"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+}
+
+TEST_F(CompareCli, NonFinitePixelsAreCountedAndRejected) {
+    Image img(8, 8);
+    img.rgb[0] = std::numeric_limits<float>::quiet_NaN();
+    img.rgb[30] = std::numeric_limits<float>::infinity();
+    img.rgb[31] = std::numeric_limits<float>::quiet_NaN();  // same pixel as 30
+    writeImage(path("bad.exr"), img);
+    writeImage(path("good.exr"), Image(8, 8));
+    const RunResult r =
+        run(path("good.exr") + " " + path("bad.exr") + " --error-map " + path("m.png"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("2 of 64"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("m.png")));
+}
+
+TEST_F(CompareCli, UnwritableErrorMapFailsBeforeWorkAndLeavesNothing) {
+    const std::string a = writePattern("a.png", 8, 8, 0.0f), b = writePattern("b.png", 8, 8, 0.1f);
+    const RunResult r = run(a + " " + b + " --error-map " + path("no/such/dir/map.png"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_EQ(run(a + " " + b + " --error-map " + path("map.jpg")).exitCode, 2);
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "a.png" || name == "b.png" || name == "stdout.txt" ||
+                    name == "stderr.txt")
+            << "unexpected file " << name;
+    }
+}
+
+TEST_F(CompareCli, BadMetricIsAUsageError) {
+    const std::string a = writePattern("a.png", 8, 8, 0.0f);
+    const RunResult r = run(a + " " + a + " --metric ssim");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+}
+
+}  // namespace
+}  // namespace pathlab
