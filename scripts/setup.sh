@@ -8,10 +8,13 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenexr-dev libpng-dev libtinyobjloader-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libsqlite3-dev libboost-dev
   libgtest-dev libbenchmark-dev
+  # The report: figures with matplotlib; its test drives Chromium from Node.
+  python3-matplotlib python3-numpy chromium nodejs
 )
-# Optional extras for `make bench` (Embree's tutorial path tracer) and the report.
+# npm ships inside some nodejs builds; Debian's own package only where it does not.
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
+# Optional extras for `make bench` (Embree's tutorial path tracer).
 if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *bench* ]]; then PACKAGES+=(embree-tools hyperfine); fi
-if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *report* ]]; then PACKAGES+=(python3-matplotlib python3-numpy); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
