@@ -1,7 +1,9 @@
 // `pathlab compare` end to end: output formats, mode selection and errors.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "core/error.h"
@@ -402,6 +403,8 @@ FeatureFilters makeFeatureFilters(float ppd) {
 }
 
 FeatureMaps detectFeatures(const std::vector<float>& achromatic, int width, int height, float ppd) {
+    if (achromatic.size() != size_t(width) * size_t(height))
+        throw std::invalid_argument("detectFeatures: image size does not match its dimensions");
     Plane in(width, height);
     in.values = achromatic;
     const FeatureFilters filters = makeFeatureFilters(ppd);

@@ -75,7 +75,7 @@ float acesToneMap(float value);
 // Per-pixel LDR-FLIP error map of two linear-RGB images with values in [0,1].
 std::vector<float> ldrFlipErrorMap(const Image& reference, const Image& test, float ppd);
 
-// The exposure range of [EG21] Sec. 3: from the exposure that maps the
+// The exposure range of [EG21]: from the exposure that maps the
 // reference's largest luminance to the tone curve's 0.85 point, to the one
 // that does so for its median luminance; count = max(2, ⌈stop − start⌉).
 struct ExposureRange {
