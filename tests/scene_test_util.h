@@ -1,6 +1,7 @@
 // Helpers for the scene tests: a scratch directory and small file writers.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,20 +9,18 @@
 #include <fstream>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "core/error.h"
 
 namespace pathlab::test {
 
 // A fresh directory removed when the test ends.
 class ScratchDir {
-public:
+  public:
     ScratchDir() {
         static std::atomic<int> counter{0};
-        path_ = std::filesystem::temp_directory_path() /
-                ("pathlab-scene-test-" + std::to_string(getpid()) + "-" +
-                 std::to_string(counter++));
+        path_ =
+            std::filesystem::temp_directory_path() /
+            ("pathlab-scene-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }
@@ -36,7 +35,7 @@ public:
         return p.string();
     }
 
-private:
+  private:
     std::filesystem::path path_;
 };
 

@@ -48,9 +48,9 @@ TEST(CornellBox, LightIsTheSpecifiedQuadFacingDown) {
     ASSERT_EQ(l.triangleCount(), 2u);
     float area = 0;
     for (size_t t = 0; t < 2; ++t) {
-        const Vec3f n = triangleNormalArea(l.positions[l.indices[3 * t]],
-                                           l.positions[l.indices[3 * t + 1]],
-                                           l.positions[l.indices[3 * t + 2]]);
+        const Vec3f n =
+            triangleNormalArea(l.positions[l.indices[3 * t]], l.positions[l.indices[3 * t + 1]],
+                               l.positions[l.indices[3 * t + 2]]);
         EXPECT_EQ(n.x, 0.0f);
         EXPECT_LT(n.y, 0.0f);  // emits downwards
         EXPECT_EQ(n.z, 0.0f);
@@ -130,7 +130,8 @@ TEST(CornellBox, GeometryMatchesThePublishedData) {
         for (const Mesh& m : s.meshes) {
             if (!includeLight && (!isBlack(m.emission) || m.name == "light")) continue;
             for (size_t t = 0; t < m.triangleCount(); ++t) {
-                const Vec3f a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                const Vec3f a = m.positions[m.indices[3 * t]],
+                            b = m.positions[m.indices[3 * t + 1]],
                             c = m.positions[m.indices[3 * t + 2]];
                 area += 0.5f * length(triangleNormalArea(a, b, c));
                 for (Vec3f p : {a, b, c}) out.insert({p.x, p.y, p.z});
@@ -146,7 +147,8 @@ TEST(CornellBox, GeometryMatchesThePublishedData) {
 
 TEST(CornellBox, ShippedJsonReproducesTheBuiltIn) {
     const SceneDescription a = cornellBoxScene();
-    const SceneDescription b = loadScene(std::string(PATHLAB_SOURCE_DIR) + "/scenes/cornell-box.json");
+    const SceneDescription b =
+        loadScene(std::string(PATHLAB_SOURCE_DIR) + "/scenes/cornell-box.json");
     expectVec(a.camera.eye, b.camera.eye);
     expectVec(a.camera.target, b.camera.target);
     EXPECT_EQ(a.camera.fovY, b.camera.fovY);
@@ -155,11 +157,13 @@ TEST(CornellBox, ShippedJsonReproducesTheBuiltIn) {
         const Mesh &ma = a.meshes[i], &mb = b.meshes[i];
         EXPECT_EQ(ma.name, mb.name);
         ASSERT_EQ(ma.positions.size(), mb.positions.size()) << ma.name;
-        for (size_t v = 0; v < ma.positions.size(); ++v) expectVec(ma.positions[v], mb.positions[v]);
+        for (size_t v = 0; v < ma.positions.size(); ++v)
+            expectVec(ma.positions[v], mb.positions[v]);
         EXPECT_EQ(ma.indices, mb.indices);
         expectVec(ma.emission, mb.emission);
         EXPECT_EQ(ma.twoSided, mb.twoSided);
-        const Material &xa = a.materials[size_t(ma.material)], &xb = b.materials[size_t(mb.material)];
+        const Material &xa = a.materials[size_t(ma.material)],
+                       &xb = b.materials[size_t(mb.material)];
         EXPECT_EQ(xa.type, xb.type);
         expectVec(xa.albedo, xb.albedo);
     }

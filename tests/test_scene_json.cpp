@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "core/image.h"
 #include "scene/builtin_scenes.h"
@@ -206,7 +208,8 @@ TEST(JsonScene, LightsDefaultToOneSidedNonReflecting) {
 }
 
 TEST(JsonScene, MalformedJsonGivesLineAndColumn) {
-    const std::string msg = inputErrorOf([] { parse("{\n  \"camera\": {\n    \"eye\": [0, 0 0]\n"); });
+    const std::string msg =
+        inputErrorOf([] { parse("{\n  \"camera\": {\n    \"eye\": [0, 0 0]\n"); });
     EXPECT_NE(msg.find("test.json"), std::string::npos) << msg;
     EXPECT_NE(msg.find("line 3"), std::string::npos) << msg;
     EXPECT_NE(msg.find("column"), std::string::npos) << msg;
@@ -221,13 +224,13 @@ struct BadCase {
 // Each case edits kMinimal once; the message must name the offending key.
 TEST(JsonScene, StrictErrorsNameTheKey) {
     const BadCase cases[] = {
-        {"\"fovY\": 40", "\"fovY\": 40, \"fov\": 3", "'fov'"},                  // unknown key
-        {"\"fovY\": 40", "\"fovY\": \"wide\"", "camera.fovY"},                 // wrong type
-        {"\"eye\": [0, 1, 5], ", "", "'eye'"},                                 // missing
-        {"\"eye\": [0, 1, 5]", "\"eye\": [0, 1]", "camera.eye"},               // wrong length
-        {"\"material\": \"grey\"", "\"material\": \"gray\"", "'gray'"},        // bad reference
+        {"\"fovY\": 40", "\"fovY\": 40, \"fov\": 3", "'fov'"},           // unknown key
+        {"\"fovY\": 40", "\"fovY\": \"wide\"", "camera.fovY"},           // wrong type
+        {"\"eye\": [0, 1, 5], ", "", "'eye'"},                           // missing
+        {"\"eye\": [0, 1, 5]", "\"eye\": [0, 1]", "camera.eye"},         // wrong length
+        {"\"material\": \"grey\"", "\"material\": \"gray\"", "'gray'"},  // bad reference
         {"\"type\": \"diffuse\"", "\"type\": \"plastic\"", "materials.grey.type"},
-        {"\"albedo\": 0.5", "\"albedo\": 0.5, \"ior\": 2", "'ior'"},           // key of another type
+        {"\"albedo\": 0.5", "\"albedo\": 0.5, \"ior\": 2", "'ior'"},  // key of another type
         {"\"albedo\": 0.5", "\"albedo\": -1", "materials.grey.albedo"},
         {"\"type\": \"quad\"", "\"type\": \"disk\"", "lights[0].type"},
         {"\"emission\": 10", "\"emission\": 10, \"emission\": 5", "'emission'"},  // duplicate
@@ -274,10 +277,32 @@ TEST(JsonScene, ShippedScenesLoad) {
     const SceneDescription gm =
         loadScene(std::string(PATHLAB_SOURCE_DIR) + "/scenes/glass-and-metal.json");
     bool types[4] = {};
-    for (const Sphere& sp : gm.spheres) types[int(gm.materials.at(size_t(sp.material)).type)] = true;
+    for (const Sphere& sp : gm.spheres)
+        types[int(gm.materials.at(size_t(sp.material)).type)] = true;
     EXPECT_TRUE(types[int(MaterialType::Mirror)]);
     EXPECT_TRUE(types[int(MaterialType::Dielectric)]);
     EXPECT_TRUE(types[int(MaterialType::Conductor)]);
+}
+
+// The commented example in docs/scene-format.md is a valid scene.
+TEST(JsonScene, DocumentedExampleLoads) {
+    std::ifstream doc(std::string(PATHLAB_SOURCE_DIR) + "/docs/scene-format.md");
+    std::stringstream text;
+    text << doc.rdbuf();
+    const std::string md = text.str();
+    const size_t begin = md.find("```jsonc\n");
+    ASSERT_NE(begin, std::string::npos);
+    const size_t end = md.find("```", begin + 8);
+    const std::string example = md.substr(begin + 9, end - begin - 9);
+    ScratchDir dir;
+    std::filesystem::create_directories(dir.path() / "models");
+    dir.write("models/bunny.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    Image fur(1, 1);
+    writeImage((dir.path() / "fur.png").string(), fur);
+    const SceneDescription s = loadScene(dir.write("example.json", example));
+    EXPECT_EQ(s.name, "example");
+    EXPECT_EQ(s.materials.size(), 7u);  // six named and the lights' black one
+    EXPECT_EQ(s.spheres.size(), 1u);
 }
 
 }  // namespace

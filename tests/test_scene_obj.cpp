@@ -155,7 +155,8 @@ TEST(ObjLoader, ZeroAreaEmissiveTriangleIsAnError) {
     ScratchDir dir;
     dir.write("l.mtl", "newmtl lamp\nKe 1 1 1\n");
     const std::string path = dir.write(
-        "l.obj", "mtllib l.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 4\nf 1 2 3\n");
+        "l.obj",
+        "mtllib l.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 4\nf 1 2 3\n");
     const std::string msg = inputErrorOf([&] { loadScene(path); });
     EXPECT_NE(msg.find("zero-area"), std::string::npos) << msg;
 }
@@ -164,17 +165,20 @@ TEST(ObjLoader, MissingFilesAreErrors) {
     ScratchDir dir;
     SceneDescription s;
     EXPECT_THROW(appendObj(s, (dir.path() / "none.obj").string()), InputError);
-    const std::string path = dir.write("m.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string path =
+        dir.write("m.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_NE(inputErrorOf([&] { appendObj(s, path); }).find("gone.mtl"), std::string::npos);
     dir.write("t.mtl", "newmtl a\nmap_Kd missing.png\n");
-    const std::string tex = dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    const std::string tex =
+        dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
     EXPECT_NE(inputErrorOf([&] { appendObj(s, tex); }).find("missing.png"), std::string::npos);
 }
 
 TEST(ObjLoader, BareObjGetsCameraAndSky) {
     Fixture f;
     ScratchDir dir;
-    const std::string path = dir.write("cube.obj", "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n");
+    const std::string path =
+        dir.write("cube.obj", "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n");
     const SceneDescription s = loadScene(path);
     EXPECT_EQ(s.environment.x, 1.0f);  // no emitters: lit by the sky
     EXPECT_EQ(s.camera.target.x, 1.0f);

@@ -11,6 +11,7 @@
 #include "scene/assets.h"
 #include "scene/mesh_utils.h"
 #include "scene/pmd_loader.h"
+#include "scene/texture_loader.h"
 #include "scene_test_util.h"
 
 namespace pathlab {
@@ -50,10 +51,10 @@ std::vector<uint8_t> tinyPmd(float position0 = 0.0f, uint16_t index2 = 2) {
     const float p[3][3] = {{position0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     for (int v = 0; v < 3; ++v) {
         for (float c : p[v]) w.f32(c);
-        w.f32(0), w.f32(0), w.f32(1);              // normal
-        w.f32(0.25f * v), w.f32(0.5f);              // UV
-        w.u32(0xFFFFFFFF);                          // bone indices
-        w.f32(0), w.f32(0), w.f32(0), w.f32(0);     // weights
+        w.f32(0), w.f32(0), w.f32(1);            // normal
+        w.f32(0.25f * v), w.f32(0.75f);          // UV
+        w.u32(0xFFFFFFFF);                       // bone indices
+        w.f32(0), w.f32(0), w.f32(0), w.f32(0);  // weights
     }
     w.u32(1);  // faces
     w.u16(0), w.u16(1), w.u16(index2);
@@ -69,7 +70,7 @@ TEST(PmdLoader, ReadsSyntheticFile) {
     EXPECT_EQ(m.positions[1].x, 1.0f);
     EXPECT_EQ(m.normals[2].z, 1.0f);
     EXPECT_EQ(m.uvs[2].x, 0.5f);
-    EXPECT_EQ(m.uvs[2].y, 0.5f);
+    EXPECT_EQ(m.uvs[2].y, 0.25f);  // v flipped: PMD's runs bottom-up
     EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2}));
 }
 
@@ -96,8 +97,7 @@ TEST(PmdLoader, RejectsBadMagicAndVersion) {
     EXPECT_NE(inputErrorOf([&] { parsePmd(f, "x"); }).find("PSMD"), std::string::npos);
     PmdWriter w;
     w.u32(0);
-    EXPECT_NE(inputErrorOf([&] { parsePmd(w.file(3), "x"); }).find("version 3"),
-              std::string::npos);
+    EXPECT_NE(inputErrorOf([&] { parsePmd(w.file(3), "x"); }).find("version 3"), std::string::npos);
 }
 
 TEST(PmdLoader, RejectsIndexOutOfRange) {
@@ -143,6 +143,27 @@ TEST(PmdLoader, ReadsTheWolf) {
         EXPECT_GE(m.uvs[i].y, 0.0f);
         EXPECT_LE(m.uvs[i].y, 1.0f);
     }
+}
+
+// The texture atlas has black gaps between its islands: with the UVs read
+// the right way up, (nearly) no triangle's interior samples them.
+TEST(PmdLoader, WolfUvsLandOnTheTextureAtlas) {
+    WolfAssets assets;
+    if (!findWolfAssets(assets)) GTEST_SKIP() << "wolf data not found (set PATHLAB_ASSETS)";
+    const Mesh m = readPmd(assets.mesh.string());
+    const Texture tex = loadTexture(assets.texture.string());
+    size_t black = 0, total = 0;
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+        for (auto [a, b] : {std::pair{0.2f, 0.2f}, {0.6f, 0.2f}, {0.2f, 0.6f}, {0.33f, 0.33f}}) {
+            const Vec2f p = m.uvs[m.indices[3 * t]], q = m.uvs[m.indices[3 * t + 1]],
+                        r = m.uvs[m.indices[3 * t + 2]];
+            const Vec2f uv{(1 - a - b) * p.x + a * q.x + b * r.x,
+                           (1 - a - b) * p.y + a * q.y + b * r.y};
+            black += maxComponent(tex.lookup(uv)) < 1e-4f;
+            ++total;
+        }
+    }
+    EXPECT_LT(black, total / 25) << black << " of " << total << " samples in the atlas's gaps";
 }
 
 TEST(PmdLoader, RejectsTheWolfTruncated) {

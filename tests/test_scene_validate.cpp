@@ -24,7 +24,9 @@ std::string problem(SceneDescription s) {
     return inputErrorOf([&] { validateScene(s, "s"); });
 }
 
-TEST(SceneValidation, AcceptsTheCornellBox) { EXPECT_NO_THROW(validateScene(cornellBoxScene(), "cb")); }
+TEST(SceneValidation, AcceptsTheCornellBox) {
+    EXPECT_NO_THROW(validateScene(cornellBoxScene(), "cb"));
+}
 
 TEST(SceneValidation, RejectsBrokenScenes) {
     const SceneDescription good = cornellBoxScene();
@@ -101,7 +103,7 @@ TEST(SceneTexture, LookupIsTopRowFirstBilinearAndWraps) {
     near(t.lookup({0.25f, 0.25f}), {1, 0, 0});  // texel centres
     near(t.lookup({0.75f, 0.25f}), {0, 1, 0});
     near(t.lookup({0.25f, 0.75f}), {0, 0, 1});
-    near(t.lookup({1.25f, -0.25f}), {0, 0, 1});  // wraps (v −0.25 ≡ 0.75)
+    near(t.lookup({1.25f, -0.25f}), {0, 0, 1});      // wraps (v −0.25 ≡ 0.75)
     near(t.lookup({0.5f, 0.25f}), {0.5f, 0.5f, 0});  // halfway along the top row
 }
 
@@ -179,7 +181,8 @@ TEST(WolfScene, BuildsWithTwoDifferentLightsAndFramesTheWolf) {
     float xmin = 1, xmax = -1;
     for (const Vec3f& p : wolf.positions) {
         const Vec3f d = p - s.camera.eye;
-        const float x = dot(d, right) / dot(d, fwd) / (t * aspect), y = dot(d, up) / dot(d, fwd) / t;
+        const float x = dot(d, right) / dot(d, fwd) / (t * aspect),
+                    y = dot(d, up) / dot(d, fwd) / t;
         EXPECT_LT(std::abs(x), 0.98f);
         EXPECT_LT(std::abs(y), 0.98f);
         xmin = std::min(xmin, x), xmax = std::max(xmax, x);

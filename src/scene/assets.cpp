@@ -77,8 +77,7 @@ void download(const fs::path& assetsDir) {
     fs::create_directories(work / "x", ec);
     if (ec) throw InputError("cannot create '" + work.string() + "': " + ec.message());
     std::cerr << "pathlab: fetching the wolf scene data from Debian's " << kPackage
-              << " package (1.4 GB download, once) into " << (assetsDir / "wolf").string()
-              << "\n";
+              << " package (1.4 GB download, once) into " << (assetsDir / "wolf").string() << "\n";
     const fs::path log = work / "log.txt";
     try {
         const std::string root = getuid() == 0 ? "" : "sudo ";

@@ -1,11 +1,11 @@
 // The built-in Cornell box. Geometry: the Cornell Program of Computer
 // Graphics' measured data (millimetres), vertex for vertex as Embree's
 // cornell_box.obj gives it, with its winding: (p1−p0)×(p2−p0) of the walls
-// points into the box, of the blocks out of them. The front wall is left out, as in the photograph; the
-// ceiling is one quad without a hole, at y = 548.8, and the light quad hangs
-// 0.8 mm below it at y = 548, so nothing of the ceiling occludes it. Block
-// footprints are part of the floor in the data; facing down, they close the
-// blocks from below and are never visible. Materials, light and camera: MISSION.md.
+// points into the box, of the blocks out of them. The front wall is left out, as in the photograph;
+// the ceiling is one quad without a hole, at y = 548.8, and the light quad hangs 0.8 mm below it at
+// y = 548, so nothing of the ceiling occludes it. Block footprints are part of the floor in the
+// data; facing down, they close the blocks from below and are never visible. Materials, light and
+// camera: MISSION.md.
 #include <array>
 
 #include "scene/builtin_scenes.h"
@@ -33,9 +33,7 @@ constexpr Quad kQuads[] = {
     {"back_wall",
      kWhite,
      {{{549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}}}},
-    {"green_wall",
-     kGreen,
-     {{{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}}}},
+    {"green_wall", kGreen, {{{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}}}},
     {"red_wall",
      kRed,
      {{{552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}}}},
@@ -50,7 +48,9 @@ constexpr Quad kQuads[] = {
     {"tall_block", kWhite, {{{314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296}}}},
     {"tall_block", kWhite, {{{265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}}}},
     // In this order (p1−p0)×(p2−p0) = (0, −13650, 0): the light faces down.
-    {"light", kLightMaterial, {{{343, 548, 227}, {343, 548, 332}, {213, 548, 332}, {213, 548, 227}}}},
+    {"light",
+     kLightMaterial,
+     {{{343, 548, 227}, {343, 548, 332}, {213, 548, 332}, {213, 548, 227}}}},
 };
 
 Material diffuse(const char* name, Vec3f albedo) {

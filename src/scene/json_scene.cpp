@@ -40,7 +40,7 @@ struct Context {
 // A JSON value with its position in the document ("meshes[2].material"), so
 // every error names the key it is about.
 class Node {
-public:
+  public:
     Node(const Json& j, std::string path, const Context& ctx)
         : j_(j), path_(std::move(path)), ctx_(ctx) {}
 
@@ -76,9 +76,7 @@ public:
         if (!j_.is_array()) fail(std::string("expected an array, got ") + typeName(j_));
         return j_.size();
     }
-    Node at(size_t i) const {
-        return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", ctx_);
-    }
+    Node at(size_t i) const { return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", ctx_); }
 
     float number() const {
         if (!j_.is_number()) fail(std::string("expected a number, got ") + typeName(j_));
@@ -92,8 +90,7 @@ public:
         return v;
     }
     int integer() const {
-        if (!j_.is_number_integer())
-            fail(std::string("expected an integer, got ") + typeName(j_));
+        if (!j_.is_number_integer()) fail(std::string("expected an integer, got ") + typeName(j_));
         const auto v = j_.get<int64_t>();
         if (v < 1 || v > 1 << 16) fail("must be between 1 and 65536");
         return int(v);
@@ -134,7 +131,7 @@ public:
         return p;
     }
 
-private:
+  private:
     std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
     const Json& j_;
     std::string path_;
@@ -203,7 +200,8 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
         n.keys({"type", "metal", "eta", "k", "roughness"});
         m.type = MaterialType::Conductor;
         if (n.has("metal")) {
-            if (n.has("eta") || n.has("k")) n.fail("give either 'metal' or 'eta' and 'k', not both");
+            if (n.has("eta") || n.has("k"))
+                n.fail("give either 'metal' or 'eta' and 'k', not both");
             const Node metal = n["metal"];
             const std::string s = metal.string();
             const Metal* found = nullptr;
@@ -281,7 +279,8 @@ void parseMesh(const Node& n, size_t index, Builder& b) {
         }
         if (n.has("transform")) {
             const Affine xf = parseTransform(n["transform"]);
-            for (size_t i = first; i < b.scene.meshes.size(); ++i) transformMesh(b.scene.meshes[i], xf);
+            for (size_t i = first; i < b.scene.meshes.size(); ++i)
+                transformMesh(b.scene.meshes[i], xf);
         }
         return;
     }
@@ -400,7 +399,9 @@ Json parseText(const std::string& text, const std::string& source) {
     std::string duplicate;
     auto callback = [&](int, Json::parse_event_t event, Json& parsed) {
         switch (event) {
-            case Json::parse_event_t::object_start: open.emplace_back(); break;
+            case Json::parse_event_t::object_start:
+                open.emplace_back();
+                break;
             case Json::parse_event_t::object_end:
                 if (!open.empty()) open.pop_back();
                 break;
@@ -409,7 +410,8 @@ Json parseText(const std::string& text, const std::string& source) {
                     duplicate.empty())
                     duplicate = parsed.get<std::string>();
                 break;
-            default: break;
+            default:
+                break;
         }
         return true;
     };
@@ -445,7 +447,8 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     s.camera.target = cam["target"].vec3();
     if (cam.has("up")) s.camera.up = cam["up"].vec3();
     s.camera.fovY = cam["fovY"].number();
-    if (!(s.camera.fovY > 0 && s.camera.fovY < 180)) cam["fovY"].fail("must be in (0, 180) degrees");
+    if (!(s.camera.fovY > 0 && s.camera.fovY < 180))
+        cam["fovY"].fail("must be in (0, 180) degrees");
     if (s.camera.eye.x == s.camera.target.x && s.camera.eye.y == s.camera.target.y &&
         s.camera.eye.z == s.camera.target.z)
         cam["target"].fail("camera target equals its eye");
@@ -500,7 +503,9 @@ double shortest(float v) {
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
 }
-Json toJson(Vec3f v) { return Json::array({shortest(v.x), shortest(v.y), shortest(v.z)}); }
+Json toJson(Vec3f v) {
+    return Json::array({shortest(v.x), shortest(v.y), shortest(v.z)});
+}
 
 }  // namespace
 
@@ -521,7 +526,10 @@ std::string sceneToJson(const SceneDescription& s) {
     for (size_t i = 0; i < s.materials.size(); ++i) {
         const Material& m = s.materials[i];
         std::string name = m.name.empty() ? "material" + std::to_string(i) : m.name;
-        if (!used.insert(name).second) used.insert(name += "#" + std::to_string(i));
+        if (!used.insert(name).second) {
+            name.append(1, '#').append(std::to_string(i));
+            used.insert(name);
+        }
         names.push_back(name);
         Json o;
         switch (m.type) {
@@ -531,8 +539,12 @@ std::string sceneToJson(const SceneDescription& s) {
                                      "': textures have no file to refer to");
                 o = {{"type", "diffuse"}, {"albedo", toJson(m.albedo)}};
                 break;
-            case MaterialType::Mirror: o = {{"type", "mirror"}, {"albedo", toJson(m.albedo)}}; break;
-            case MaterialType::Dielectric: o = {{"type", "dielectric"}, {"ior", shortest(m.ior)}}; break;
+            case MaterialType::Mirror:
+                o = {{"type", "mirror"}, {"albedo", toJson(m.albedo)}};
+                break;
+            case MaterialType::Dielectric:
+                o = {{"type", "dielectric"}, {"ior", shortest(m.ior)}};
+                break;
             case MaterialType::Conductor:
                 o = {{"type", "conductor"},
                      {"eta", toJson(m.eta)},

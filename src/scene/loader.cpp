@@ -15,7 +15,9 @@
 namespace pathlab {
 namespace fs = std::filesystem;
 
-std::vector<std::string> builtinSceneNames() { return {"cornell-box", "wolf"}; }
+std::vector<std::string> builtinSceneNames() {
+    return {"cornell-box", "wolf"};
+}
 
 SceneDescription loadObjScene(const std::string& path) {
     SceneDescription scene;
@@ -45,8 +47,9 @@ SceneDescription loadScene(const std::string& nameOrPath) {
     } else {
         std::error_code ec;
         if (!fs::exists(nameOrPath, ec))
-            throw InputError("unknown scene '" + nameOrPath +
-                             "': neither a built-in scene (cornell-box, wolf) nor an existing file");
+            throw InputError(
+                "unknown scene '" + nameOrPath +
+                "': neither a built-in scene (cornell-box, wolf) nor an existing file");
         if (!fs::is_regular_file(nameOrPath, ec))
             throw InputError("scene '" + nameOrPath + "' is not a regular file");
         std::string ext = fs::path(nameOrPath).extension().string();

@@ -76,7 +76,9 @@ Vec3f Affine::vector(Vec3f v) const {
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 
-Vec3f Affine::point(Vec3f p) const { return vector(p) + t; }
+Vec3f Affine::point(Vec3f p) const {
+    return vector(p) + t;
+}
 
 float Affine::determinant() const {
     return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -

@@ -26,7 +26,9 @@ Bounds3f sceneBounds(const SceneDescription& scene);
 
 // Twice the area's vector: (p1−p0)×(p2−p0); its direction is the triangle's
 // front side (the side a one-sided light emits towards).
-inline Vec3f triangleNormalArea(Vec3f p0, Vec3f p1, Vec3f p2) { return cross(p1 - p0, p2 - p0); }
+inline Vec3f triangleNormalArea(Vec3f p0, Vec3f p1, Vec3f p2) {
+    return cross(p1 - p0, p2 - p0);
+}
 
 // Appends one triangle with its own three vertices.
 void appendTriangle(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2);

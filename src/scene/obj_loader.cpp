@@ -38,7 +38,9 @@ void checkCoordinates(const std::string& path) {
     }
 }
 
-Vec3f rgb(const tinyobj::real_t c[3]) { return {float(c[0]), float(c[1]), float(c[2])}; }
+Vec3f rgb(const tinyobj::real_t c[3]) {
+    return {float(c[0]), float(c[1]), float(c[2])};
+}
 
 Vec3f conductorK(Vec3f reflectance) {
     auto k = [](float r) {
@@ -131,7 +133,8 @@ size_t appendObj(SceneDescription& scene, const std::string& path, int materialO
     std::map<std::string, int> textureCache;
     const auto& mtl = reader.GetMaterials();
     if (materialOverride < 0)
-        for (const auto& m : mtl) scene.materials.push_back(convertMaterial(m, scene, baseDir, textureCache));
+        for (const auto& m : mtl)
+            scene.materials.push_back(convertMaterial(m, scene, baseDir, textureCache));
     int defaultMaterial = -1;
 
     // Faces grouped by material id, in order of first use.
@@ -183,8 +186,10 @@ size_t appendObj(SceneDescription& scene, const std::string& path, int materialO
                 const float* n = &attrib.normals[3 * size_t(k.n)];
                 const Vec3f normal{n[0], n[1], n[2]};
                 // A zero normal cannot shade; fall back to flat shading.
-                if (dot(normal, normal) == 0) g.allNormals = false;
-                else mesh.normals.push_back(normalize(normal));
+                if (dot(normal, normal) == 0)
+                    g.allNormals = false;
+                else
+                    mesh.normals.push_back(normalize(normal));
             }
             if (g.allUvs) {
                 const float* t = &attrib.texcoords[2 * size_t(k.t)];

@@ -17,7 +17,7 @@ namespace pathlab {
 namespace {
 
 class Reader {
-public:
+  public:
     Reader(std::span<const uint8_t> bytes, const std::string& source)
         : bytes_(bytes), source_(source) {}
 
@@ -52,7 +52,7 @@ public:
         pos_ += n;
     }
 
-private:
+  private:
     std::span<const uint8_t> bytes_;
     const std::string& source_;
     size_t pos_ = 0;
@@ -99,7 +99,10 @@ Mesh parsePmd(std::span<const uint8_t> bytes, const std::string& source) {
         n = normalize(n);
         for (uint32_t s = 0; s < uvSets; ++s) {
             const float u = in.f32("UV"), v = in.f32("UV");
-            if (s == 0) mesh.uvs[i] = {u, v};  // v = 0 is the texture's top row, as ours
+            // PMD's v runs bottom-up (OpenGL's convention); ours top-down. With
+            // v flipped, the wolf's UV triangles cover exactly the islands of
+            // its texture atlas; unflipped, a third of them fall into the gaps.
+            if (s == 0) mesh.uvs[i] = {u, 1.0f - v};
         }
         in.skip(4, "bone indices");
         for (int w = 0; w < 4; ++w) in.f32("bone weight");

@@ -10,7 +10,8 @@
 namespace pathlab {
 
 // Reads a PMD v4 file into a mesh with positions, normals, the first UV set
-// and triangles, in the stored bind pose (skinning is ignored). Throws
+// (v flipped to our top-row-first convention) and triangles, in the stored
+// bind pose (skinning is ignored). Throws
 // InputError naming the file when it cannot be read, is not PMD v4, disagrees
 // with its own sizes, has an index out of range or a non-finite value.
 Mesh readPmd(const std::string& path);

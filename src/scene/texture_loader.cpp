@@ -15,7 +15,8 @@ Texture textureFromImage(const Image& image) {
     t.height = image.height;
     t.texels.resize(image.pixelCount());
     for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) t.texels[size_t(y) * image.width + x] = image.at(x, y);
+        for (int x = 0; x < image.width; ++x)
+            t.texels[size_t(y) * image.width + x] = image.at(x, y);
     return t;
 }
 

@@ -19,7 +19,9 @@ std::string str(Vec3f v) {
     throw InputError(source + ": " + what);
 }
 
-bool nonNegativeFinite(Vec3f c) { return isFinite(c) && c.x >= 0 && c.y >= 0 && c.z >= 0; }
+bool nonNegativeFinite(Vec3f c) {
+    return isFinite(c) && c.x >= 0 && c.y >= 0 && c.z >= 0;
+}
 
 void validateCamera(const Camera& c, const std::string& source) {
     if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up))
@@ -38,8 +40,8 @@ void validateMaterial(const Material& m, size_t textureCount, const std::string&
     if (!nonNegativeFinite(m.albedo) || maxComponent(m.albedo) > 1)
         fail(source, what + " has albedo " + str(m.albedo) + " outside [0, 1]");
     if (m.texture < -1 || (m.texture >= 0 && size_t(m.texture) >= textureCount))
-        fail(source, what + " refers to texture " + std::to_string(m.texture) +
-                         " which does not exist");
+        fail(source,
+             what + " refers to texture " + std::to_string(m.texture) + " which does not exist");
     if (m.type == MaterialType::Dielectric && !(std::isfinite(m.ior) && m.ior > 0))
         fail(source, what + " has an invalid index of refraction");
     if (m.type == MaterialType::Conductor) {
@@ -51,7 +53,8 @@ void validateMaterial(const Material& m, size_t textureCount, const std::string&
 }
 
 void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const std::string& source) {
-    const std::string what = "mesh '" + (mesh.name.empty() ? std::to_string(index) : mesh.name) + "'";
+    const std::string what =
+        "mesh '" + (mesh.name.empty() ? std::to_string(index) : mesh.name) + "'";
     const size_t n = mesh.positions.size();
     if (mesh.indices.size() % 3 != 0)
         fail(source, what + " has an index count that is not a multiple of 3");

@@ -1,10 +1,10 @@
 // The built-in wolf: 0 A.D.'s wolf (© 2010 Wildfire Games, CC-BY-SA-3.0) on a
 // wide grey floor, seen from its right side and a little above, under two
 // one-sided rectangular area lights of different size and power plus a dim
-// sky. The large key light, above and in front of the camera's side, casts a
-// soft shadow under the wolf; the small, brighter fill light from behind the
-// wolf on the far side rims its back and puts a second, sharper shadow on the
-// floor, so the light-choice dimension of a sampler matters.
+// sky. The large key light, high over the camera's side, casts a soft shadow
+// under the wolf; the small, brighter fill light, low at the tail end, lights
+// the flank and hind legs and casts a second, sharper shadow, so the
+// light-choice dimension of a sampler matters.
 #include <cmath>
 
 #include "core/error.h"
@@ -67,14 +67,15 @@ SceneDescription wolfScene() {
     Mesh ground;
     ground.name = "floor";
     ground.material = kFloor;
-    const float y0 = b.lo.y, r = 60.0f;
+    const float y0 = b.lo.y, r = 30.0f;
     appendQuad(ground, {-r, y0, -r}, {-r, y0, r}, {r, y0, r}, {r, y0, -r});
     s.meshes.push_back(std::move(ground));
 
-    // Key: 3 m × 3 m at 5.5 m, over the camera's side; fill: 0.6 m × 0.6 m,
-    // low behind the wolf on the far side, about 5× the radiance.
+    // Key: 3 × 3 at 5.5 above the floor, over the camera's side and towards
+    // the head; fill: 0.6 × 0.6, low at the tail end on the camera's side, just
+    // out of the picture, with about 5× the radiance but 1/5 of the power.
     const Vec3f c = b.center();
-    const Vec3f keyPos{3.0f, 5.5f, -1.5f}, fillPos{-3.0f, 2.2f, 2.5f};
+    const Vec3f keyPos{3.0f, 5.5f, -1.5f}, fillPos{2.5f, 1.6f, 4.5f};
     s.meshes.push_back(rectangleLight("key light", keyPos, c - keyPos, 3.0f, 3.0f,
                                       Vec3f(9.0f, 8.6f, 8.0f), kLight));
     s.meshes.push_back(rectangleLight("fill light", fillPos, c - fillPos, 0.6f, 0.6f,
@@ -82,9 +83,10 @@ SceneDescription wolfScene() {
     s.environment = Vec3f(0.06f, 0.07f, 0.08f);
 
     // From the wolf's right side (+x; its snout points to −z, which is then
-    // image right), a little above, framing the body with some floor around.
-    s.camera.target = {c.x, c.y - 0.1f, c.z};
-    s.camera.eye = {c.x + 8.0f, c.y + 2.2f, c.z - 1.2f};
+    // image right), a little above — steep enough that the floor, not the
+    // horizon, is the whole background — framing the body with floor around.
+    s.camera.target = {c.x, c.y - 0.2f, c.z};
+    s.camera.eye = {c.x + 7.5f, c.y + 3.3f, c.z - 1.5f};
     s.camera.up = {0, 1, 0};
     s.camera.fovY = 30.0f;
     return s;
