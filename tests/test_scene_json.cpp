@@ -232,6 +232,7 @@ TEST(JsonScene, StrictErrorsNameTheKey) {
         {"\"type\": \"diffuse\"", "\"type\": \"plastic\"", "materials.grey.type"},
         {"\"albedo\": 0.5", "\"albedo\": 0.5, \"ior\": 2", "'ior'"},  // key of another type
         {"\"albedo\": 0.5", "\"albedo\": -1", "materials.grey.albedo"},
+        {"\"albedo\": 0.5", "\"albedo\": 0.5, \"texture\": \"t.png\"", "'texture'"},
         {"\"type\": \"quad\"", "\"type\": \"disk\"", "lights[0].type"},
         {"\"emission\": 10", "\"emission\": 10, \"emission\": 5", "'emission'"},  // duplicate
         {"\"fovY\": 40", "\"fovY\": 180", "camera.fovY"},

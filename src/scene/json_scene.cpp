@@ -171,6 +171,9 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
     if (type == "diffuse") {
         n.keys({"type", "albedo", "texture"});
         m.type = MaterialType::Diffuse;
+        // The texture is the albedo (scene.h); both would leave one unused.
+        if (n.has("albedo") && n.has("texture"))
+            n.fail("give either 'albedo' or 'texture', not both");
         if (n.has("albedo")) m.albedo = n["albedo"].colour();
         if (n.has("texture")) {
             const Node t = n["texture"];
@@ -185,7 +188,7 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
                 it = b.textureIndex.emplace(path, int(b.scene.textures.size()) - 1).first;
             }
             m.texture = it->second;
-            if (!n.has("albedo")) m.albedo = Vec3f(1.0f);
+            m.albedo = Vec3f(1.0f);
         }
     } else if (type == "mirror") {
         n.keys({"type", "albedo"});

@@ -19,7 +19,7 @@ namespace pathlab {
 //   illum 3, 5 or 8 and Ns ≥ 1000 → Mirror, reflectance Ks (1 when Ks = 0)
 //   illum 3, 5 or 8, Ns < 1000   → Conductor, reflectance Ks, GGX alpha
 //                                  sqrt(2/(Ns+2)) (the Phong–Beckmann match)
-//   anything else                → Diffuse with Kd, textured by map_Kd
+//   anything else                → Diffuse with Kd, or map_Kd's texture instead
 // A conductor's reflectance R becomes eta = 1, k = 2·sqrt(R/(1−R)), which
 // reproduces R at normal incidence. OBJ texture coordinates have v = 0 at the
 // bottom; they are flipped to our top-row-first convention. When
