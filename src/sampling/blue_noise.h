@@ -22,7 +22,10 @@
 // rotation (Cranley & Patterson 1976) per dimension; the rotation makes every
 // dimension, and every pair, exactly uniform over seeds — so the estimator is
 // unbiased — while each dimension keeps the texture's spatial blue-noise
-// spectrum. Any number of dimensions; values repeat only through the texture.
+// spectrum. The presentation's lookup cycles through only S texels as the
+// sample index grows (1091 and 2399 are odd, so i ↦ (1091 i, 2399 i) mod S has
+// period S): every further block of S samples gets a fresh rotation, so the
+// estimate keeps converging past S samples per pixel. Any number of dimensions.
 #pragma once
 
 #include <filesystem>
@@ -92,7 +95,7 @@ class BlueNoiseSampler {
         const uint64_t y = uint64_t(uint32_t(pixel_.y)) + offsetY_;
         const uint64_t row = (y + inBlock * 100937 + index_ * 1091 + depth * 133337) % size;
         const uint64_t col = (x + inBlock * 99523 + index_ * 2399 + depth * 2549) % size;
-        const uint32_t rotation = foldSeed(hashValues(seed_, d, 0x4350u));
+        const uint32_t rotation = foldSeed(hashValues(seed_, d, index_ / size, 0x4350u));
         return fixedPointToFloat(texture_->fixedPoint[row * size + col] + rotation);
     }
 

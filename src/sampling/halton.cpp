@@ -21,23 +21,28 @@ uint64_t multiplicativeInverse(int64_t a, int64_t n) {
 
 }  // namespace
 
-HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed) {
+HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
     const int* primes = primeTable();
-    offset.resize(kPrimeTableSize);
+    offset.resize(kTabulatedBases);
     size_t total = 0;
-    for (int d = 0; d < kPrimeTableSize; ++d) {
+    for (int d = 0; d < kTabulatedBases; ++d) {
         offset[d] = static_cast<uint32_t>(total);
         total += primes[d];
     }
     table.resize(total);
     shifts.resize(size_t(kPrimeTableSize) * kMaxDigits);
     for (int d = 0; d < kPrimeTableSize; ++d) {
+        const int base = primes[d];
+        Pcg32 rng(hashValues(seed, base, 0x5244u), 0);
+        if (d >= kTabulatedBases) {
+            for (int k = 0; k < kMaxDigits; ++k)
+                shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
+            continue;
+        }
         // Fisher–Yates with a PCG32 stream per base: the presentation's "array
         // the size of the base, each digit mapped to a randomly chosen digit".
-        const int base = primes[d];
         uint16_t* perm = table.data() + offset[d];
         for (int i = 0; i < base; ++i) perm[i] = static_cast<uint16_t>(i);
-        Pcg32 rng(hashValues(seed, base, 0x5244u), 0);
         for (int i = base - 1; i > 0; --i) std::swap(perm[i], perm[rng.nextUInt(i + 1)]);
         for (int k = 0; k < kMaxDigits; ++k)
             shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
@@ -90,7 +95,7 @@ uint64_t HaltonImageMapping::index(Vec2i p, int sampleIndex) const {
     return h + uint64_t(sampleIndex) * stride;
 }
 
-float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                          const uint16_t* shifts) {
     // All digits down to float precision are permuted — including the zero
     // digits past a's leading digit — so the map x → scrambled(x) is a
@@ -102,14 +107,14 @@ float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* p
     uint64_t reversed = 0;
     for (int k = 0; k < digits; ++k) {
         const uint64_t next = a / base;
-        reversed = reversed * base + permutation[(a - next * base + shifts[k]) % base];
+        reversed = reversed * base + permutation(uint32_t((a - next * base + shifts[k]) % base));
         invBaseM *= invBase;
         a = next;
     }
     return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
 }
 
-float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                   uint64_t dimensionHash) {
     // The permutation of digit k is chosen by hashing the digits above it (the
     // node of Owen's tree the point lies in): points sharing the first k digits
@@ -122,7 +127,7 @@ float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutat
         const uint64_t next = a / base;
         const uint64_t digit = a - next * base;
         const uint64_t node = mixBits(dimensionHash ^ (reversed * 0x9e3779b97f4a7c15ULL + k));
-        reversed = reversed * base + permutation[(digit + node % base) % base];
+        reversed = reversed * base + permutation(uint32_t((digit + node % base) % base));
         invBaseM *= invBase;
         a = next;
     }

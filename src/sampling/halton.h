@@ -45,19 +45,37 @@ namespace pathlab {
 
 enum class HaltonScrambling { None, RandomDigit, Owen };
 
+// The first kTabulatedBases permutations are tables (a path of depth 8 uses 58
+// dimensions); beyond them the permutation of base b is evaluated on the fly
+// by permutationElement with a seed hashed from (seed, b) — also a seeded
+// pseudo-random permutation, just slower — so building the tables for a new
+// seed costs well under a millisecond instead of 7 MB for all 1000 bases.
+struct DigitPermutation {
+    const uint16_t* table;  // null: evaluate with permutationElement
+    uint64_t hash;
+    uint32_t base;
+    uint32_t operator()(uint32_t digit) const {
+        return table ? table[digit] : permutationElement(digit, base, hash);
+    }
+};
+
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
-    static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 25
-    std::vector<uint32_t> offset;          // start of base b_d's permutation in `table`
+    static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
+    static constexpr int kTabulatedBases = 128;
+    uint64_t seed;
+    std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
     std::vector<uint16_t> shifts;  // kMaxDigits per base: the per-position digit shifts
     explicit HaltonDigitPermutations(uint64_t seed);
-    const uint16_t* forDimension(int d) const { return table.data() + offset[d]; }
+    DigitPermutation forDimension(int d, int base) const {
+        return {d < kTabulatedBases ? table.data() + offset[d] : nullptr,
+                hashValues(seed, base, 0x5244u), uint32_t(base)};
+    }
     const uint16_t* shiftsForDimension(int d) const { return shifts.data() + d * kMaxDigits; }
 };
 
-// The tables for a seed, shared by every sampler built with it (building them
-// takes a few milliseconds and 7 MB).
+// The tables for a seed, shared by every sampler built with it.
 std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed);
 
 // The image-plane mapping shared by the three variants.
@@ -111,9 +129,9 @@ using RandomDigitHaltonSampler = HaltonSamplerT<HaltonScrambling::RandomDigit>;
 using OwenHaltonSampler = HaltonSamplerT<HaltonScrambling::Owen>;
 
 // Digit-level helpers, exposed for tests.
-float randomDigitScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                          const uint16_t* shifts);
-float owenScrambledRadicalInverse(int base, uint64_t a, const uint16_t* permutation,
+float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                   uint64_t dimensionHash);
 
 template <HaltonScrambling kScrambling>
@@ -131,10 +149,11 @@ float HaltonSamplerT<kScrambling>::sampleDimension(int d) const {
         return radicalInverse(base, haltonIndex_);
     } else if constexpr (kScrambling == HaltonScrambling::RandomDigit) {
         return randomDigitScrambledRadicalInverse(base, haltonIndex_,
-                                                  permutations_->forDimension(wrapped),
+                                                  permutations_->forDimension(wrapped, base),
                                                   permutations_->shiftsForDimension(wrapped));
     } else {
-        return owenScrambledRadicalInverse(base, haltonIndex_, permutations_->forDimension(wrapped),
+        return owenScrambledRadicalInverse(base, haltonIndex_,
+                                           permutations_->forDimension(wrapped, base),
                                            hashValues(seed_, d, 0x4f57454eu));
     }
 }
