@@ -334,8 +334,8 @@
       const ctx = this.canvas.getContext("2d");
       const dpr = this.canvas.width / (this.canvas.clientWidth || 1);
       ctx.setTransform(1, 0, 0, 1, 0, 0);
-      ctx.fillStyle = "#1e1e1e";
-      ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+      // Transparent around the image, so exposure leaves the backdrop alone.
+      ctx.clearRect(0, 0, this.canvas.width, this.canvas.height);
       if (!this.image) return;
       const st = this.state;
       ctx.imageSmoothingEnabled = false;  // nearest neighbour: see the real pixels

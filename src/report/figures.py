@@ -24,7 +24,7 @@ PALETTE = {
     "halton-rd": "#17becf",
     "halton-owen": "#9467bd",
     "blue-noise": "#2ca02c",
-    "independent": "#a6a6a6",
+    "independent": "#8f8f8f",
     "stratified": "#8c564b",
     "sobol": "#ff7f0e",
     "sobol-xor": "#d4a000",

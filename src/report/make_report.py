@@ -147,7 +147,8 @@ def figure_block(base, caption):
 def table_columns(study, scene):
     spps = study.spps(scene)
     ratio_spps = [n for n in TABLE_SPPS if n in spps]
-    if spps and spps[-1] not in ratio_spps and spps[-1] > TABLE_SPPS[-1] or not ratio_spps:
+    # The study's largest spp too, when it goes beyond 64 or misses them all.
+    if spps[-1] not in ratio_spps and (spps[-1] > TABLE_SPPS[-1] or not ratio_spps):
         ratio_spps.append(spps[-1])
     has_independent = "independent" in study.samplers(scene)
     cols = [("MSE slope", lambda a: a.get("slope_mse")),
