@@ -67,7 +67,7 @@
       });
       cell.append(full, el("div", { class: "gzoom" }, zoomImg));
       cell.append(el("div", { class: "gmetric" },
-        entry ? `MSE ${fmt(entry.mse_value)} · FLIP ${fmt(entry.flip_value)}` : "reference"));
+        entry ? `MSE ${fmt(entry.mse_value)}\nFLIP ${fmt(entry.flip_value)}` : "reference"));
       cell.addEventListener("click", () => {
         if (name !== REFERENCE) comparer.select(name, Number(spp));
         comparer.root.scrollIntoView({ behavior: "smooth", block: "center" });

@@ -14,7 +14,7 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
-from matplotlib.ticker import FuncFormatter, NullFormatter  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 # Colour-blind-aware and distinct; the presentation's five are drawn solid,
 # the pbrt-v4 family dashed, so twelve lines stay tellable apart.
@@ -118,7 +118,7 @@ def plot_vs_spp(ax, study, scene, metric):
         _slope_guide(ax, study, scene, metric)
     floor = study.noise_floor(scene) if metric == "mse" else None
     if floor:
-        ax.axhline(floor, color=REFERENCE_COLOUR, linestyle=":", linewidth=1,
+        ax.axhline(floor, color=REFERENCE_COLOUR, linestyle="-", linewidth=0.8, alpha=0.7,
                    label="reference noise floor")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
@@ -132,13 +132,13 @@ def plot_vs_spp(ax, study, scene, metric):
 
 
 def _label_short_log_axis(ax):
-    """Labels minor ticks too when the y range is under a decade (FLIP often
-    is), so the axis is never left without numbers."""
+    """Ticks at 1, 2, 3, 5 × 10^k when the y range spans under two decades
+    (FLIP's usually does), so the axis is never left with one number."""
     low, high = ax.get_ylim()
-    if low > 0 and high / low < 10:
-        plain = FuncFormatter(lambda y, _: f"{y:.3g}")
-        ax.yaxis.set_major_formatter(plain)
-        ax.yaxis.set_minor_formatter(plain)
+    if low > 0 and high / low < 100:
+        ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 3.0, 5.0)))
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:.3g}"))
+        ax.yaxis.set_minor_formatter(NullFormatter())
 
 
 def plot_vs_time(ax, study, scene):
@@ -151,7 +151,7 @@ def plot_vs_time(ax, study, scene):
         ax.axhline(target, color="#555", linestyle="--", linewidth=0.8, label="target error")
     floor = study.noise_floor(scene)
     if floor:
-        ax.axhline(floor, color=REFERENCE_COLOUR, linestyle=":", linewidth=1,
+        ax.axhline(floor, color=REFERENCE_COLOUR, linestyle="-", linewidth=0.8, alpha=0.7,
                    label="reference noise floor")
     budget = study.time_budget()
     if budget:
@@ -177,7 +177,8 @@ def convergence_figures(study, scene, directory, slug):
     for suffix, draw in PLOTS:
         fig, ax = plt.subplots(figsize=(4.6, 3.4))
         draw(ax, study, scene)
-        ax.legend(loc="best", ncol=2 if len(study.samplers(scene)) > 5 else 1)
+        # Beside the axes, where it never hides a line.
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
         names.append(save(fig, directory, f"{slug}-{suffix}"))
     fig, axes = plt.subplots(2, 2, figsize=(9.2, 6.8))
     for ax, (_, draw) in zip(axes.flat, PLOTS):

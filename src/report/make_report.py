@@ -256,9 +256,10 @@ def scene_section(study, scene, data, figure_names):
     <figure class="reference"><img src="{esc(data['reference'])}" alt="reference of {esc(scene)}"
       width="{width}" height="{height}">
       <figcaption>{esc(reference_caption(study, scene, width, height))}</figcaption></figure>
-    <div>{findings(study, scene)}
+    <div class="summary">{findings(study, scene)}
       <p class="note">Seeds: {len(study.seeds())}; bands in the plots span the lowest to the
-      highest error over the seeds. Images show seed 0.</p></div>
+      highest error over the seeds. Images show seed 0.</p>
+      <img class="headline" src="figures/{esc(plots[0])}.svg" alt="MSE vs spp"></div>
   </div>
   <h3>Comparison grid</h3>
   <div class="grid-host"></div>
