@@ -92,10 +92,13 @@ inline constexpr int kSobolMatrixColumns = 64;  // indices up to 2^64
 const uint32_t* sobolMatrices();
 
 inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {
+    // Dimension 0 is the van der Corput sequence: C_0 is the bit reversal
+    // (its columns past 32 are zero).
+    if (dimension == 0) return reverseBits32(static_cast<uint32_t>(a));
     const uint32_t* column = matrices + dimension * kSobolMatrixColumns;
     uint32_t v = 0;
-    for (; a != 0; a >>= 1, ++column)
-        if (a & 1) v ^= *column;
+    // One XOR per set bit of a, without data-dependent branches per bit.
+    for (; a != 0; a &= a - 1) v ^= column[__builtin_ctzll(a)];
     return v;
 }
 

@@ -1,0 +1,93 @@
+// Nanoseconds per sample for every sampler, drawn the way the renderer draws
+// them: startPixelSample at the start of each path vertex's block, then the
+// block's 1D and 2D draws (light choice, light point, lobe, direction,
+// roulette), for a path of depth 4 — so startPixelSample is amortised over a
+// typical path. Reported per drawn dimension, and separately for 1D and 2D.
+#include <benchmark/benchmark.h>
+
+#include "sampling/registry.h"
+
+namespace pathlab {
+namespace {
+
+constexpr int kSpp = 64;
+constexpr int kDepth = 4;
+constexpr Vec2i kResolution{256, 256};
+
+// One path: pixel 2D + kDepth blocks of 1D, 2D, 1D, 2D, 1D = 2 + 7 kDepth dims.
+template <typename S>
+float drawPath(S& s, Vec2i pixel, int index) {
+    s.startPixelSample(pixel, index, 0);
+    Vec2f p = s.getPixel2D();
+    float acc = p.x + p.y;
+    for (int depth = 0; depth < kDepth; ++depth) {
+        s.startPixelSample(pixel, index, dims::bounceBase(depth));
+        acc += s.get1D();
+        const Vec2f light = s.get2D();
+        acc += s.get1D();
+        const Vec2f dir = s.get2D();
+        acc += light.x + light.y + dir.x + dir.y + s.get1D();
+    }
+    return acc;
+}
+
+void pathDimensions(benchmark::State& state, const std::string& name) {
+    AnySampler sampler = makeSampler(name, SamplerConfig{kSpp, 1, kResolution});
+    int64_t paths = 0;
+    std::visit(
+        [&](auto& s) {
+            int x = 0, y = 0, index = 0;
+            for (auto _ : state) {
+                benchmark::DoNotOptimize(drawPath(s, Vec2i{x, y}, index));
+                ++paths;
+                if (++index == kSpp) index = 0, x = (x + 1) % kResolution.x, y += x == 0;
+                y %= kResolution.y;
+            }
+        },
+        sampler);
+    const double dimsPerPath = 2 + 7.0 * kDepth;
+    state.counters["ns/dim"] = benchmark::Counter(
+        double(paths) * dimsPerPath, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Only 1D (or only 2D) draws after one startPixelSample per 8 draws.
+template <bool kTwoD>
+void draws(benchmark::State& state, const std::string& name) {
+    AnySampler sampler = makeSampler(name, SamplerConfig{kSpp, 1, kResolution});
+    int64_t count = 0;
+    std::visit(
+        [&](auto& s) {
+            int index = 0, x = 0;
+            for (auto _ : state) {
+                s.startPixelSample(Vec2i{x, 7}, index, dims::kFirstBounce);
+                float acc = 0;
+                for (int k = 0; k < 8; ++k) {
+                    if constexpr (kTwoD) {
+                        const Vec2f u = s.get2D();
+                        acc += u.x + u.y;
+                    } else {
+                        acc += s.get1D();
+                    }
+                }
+                benchmark::DoNotOptimize(acc);
+                count += 8;
+                if (++index == kSpp) index = 0, x = (x + 1) % kResolution.x;
+            }
+        },
+        sampler);
+    state.counters[kTwoD ? "ns/2D" : "ns/1D"] = benchmark::Counter(
+        double(count), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+const bool registered = [] {
+    for (const SamplerInfo& info : samplerInfos()) {
+        benchmark::RegisterBenchmark(("Sampler/path/" + info.name).c_str(), pathDimensions,
+                                     info.name);
+        benchmark::RegisterBenchmark(("Sampler/1D/" + info.name).c_str(), draws<false>, info.name);
+        benchmark::RegisterBenchmark(("Sampler/2D/" + info.name).c_str(), draws<true>, info.name);
+    }
+    return true;
+}();
+
+}  // namespace
+}  // namespace pathlab
