@@ -11,6 +11,7 @@ void addRenderCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addSamplersCommand(CLI::App& app);
 void addPointsCommand(CLI::App& app);
+void addStudyCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 

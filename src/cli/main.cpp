@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     pathlab::cli::addCompareCommand(app);
     pathlab::cli::addSamplersCommand(app);
     pathlab::cli::addPointsCommand(app);
+    pathlab::cli::addStudyCommand(app);
     pathlab::cli::addBenchCommand(app);
     pathlab::cli::addReportCommand(app);
     try {

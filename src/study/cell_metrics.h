@@ -1,0 +1,43 @@
+// What a study measures about one render against its reference, and the
+// per-pixel pictures of it that the report shows.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "study/spec.h"
+
+namespace pathlab {
+
+struct CellMetrics {
+    double mse = 0, rmse = 0;
+    std::optional<double> relmse, flip, flipMedian, psnr;
+    std::vector<float> flipMap;  // HDR-FLIP per pixel; empty unless FLIP was measured
+};
+
+// MSE and RMSE always, the rest as `spec.metrics` asks. FLIP is HDR-FLIP (the
+// renders are linear and unbounded); PSNR is that of the tone-mapped 8-bit
+// views (both images scaled by 2^exposure, clamped, sRGB encoded, peak 1).
+CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
+                        const StudySpec& spec);
+
+// The reference's own noise, from the renderer's per-pixel variance of the
+// mean: E[MSE(test, reference)] = true MSE + noiseMse for a test independent of
+// the reference, so no MSE below noiseMse says anything about the test.
+struct NoiseFloor {
+    double mse = 0, relmse = 0;
+};
+NoiseFloor referenceNoise(const Image& reference, const Image& varianceOfMean);
+
+// Stops of exposure that put the reference's 99th-percentile luminance at 0.9,
+// so the PNGs of one scene share one brightness and few pixels clip.
+float viewingExposure(const Image& reference);
+
+// Per pixel, the relative squared error (t−r)²/(r²+ε) averaged over channels,
+// mapped to [0,1] on a log scale from 1e-4 (0) to 10 (1) so maps of different
+// samplers and sample counts can be compared side by side.
+std::vector<float> relativeSquaredErrorMap(const Image& reference, const Image& test);
+
+}  // namespace pathlab

@@ -1,0 +1,59 @@
+// References: one high-spp render per scene and settings, kept in a
+// content-addressed cache (cacheDirectory()/references/KEY.exr + KEY.json) so
+// that every later study with the same scene and settings reuses it.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/image.h"
+#include "render/render_scene.h"
+#include "scene/scene.h"
+#include "study/cell_metrics.h"
+#include "study/spec.h"
+
+namespace pathlab {
+
+struct Reference {
+    Image image;
+    double seconds = 0;  // of the render that made it, perhaps in an earlier study
+    NoiseFloor noise;
+    float exposure = 0;
+    std::string cacheKey;
+};
+
+// Bumped whenever the renderer's output for the same inputs changes, so stale
+// references are never reused.
+inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-1";
+
+// Hash of what determines the reference's pixels: the scene as loaded (camera,
+// materials, textures, geometry), the scene file's bytes for a file scene, the
+// resolution, depth, Russian roulette, and the reference's spp, sampler and seed.
+std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& source,
+                              const StudySpec& spec);
+
+class ReferenceCache {
+  public:
+    explicit ReferenceCache(std::filesystem::path directory);
+    // The cache under cacheDirectory() ($PATHLAB_CACHE and friends).
+    static ReferenceCache standard();
+
+    bool contains(const std::string& key) const;
+    // Nullopt when absent or unreadable (a damaged entry is rendered again).
+    std::optional<Reference> load(const std::string& key) const;
+    // Image first, metadata last: an entry whose metadata exists is complete.
+    void store(const Reference& reference, const StudyScene& scene, const StudySpec& spec) const;
+
+  private:
+    std::filesystem::path imagePath(const std::string& key) const;
+    std::filesystem::path metadataPath(const std::string& key) const;
+    std::filesystem::path directory_;
+};
+
+// Renders the reference with all `threads` (0 = all cores), showing the
+// renderer's progress, and measures its noise floor and viewing exposure.
+Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
+                          const std::string& cacheKey);
+
+}  // namespace pathlab

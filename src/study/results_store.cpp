@@ -1,0 +1,243 @@
+#include "study/results_store.h"
+
+#include <sqlite3.h>
+
+#include <stdexcept>
+#include <tuple>
+
+#include "core/error.h"
+
+namespace pathlab {
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS cells (
+  scene TEXT NOT NULL, sampler TEXT NOT NULL, spp INTEGER NOT NULL, seed INTEGER NOT NULL,
+  seconds REAL, mse REAL, rmse REAL, relmse REAL, flip REAL, flip_median REAL, psnr REAL,
+  nonfinite INTEGER, image TEXT, width INTEGER, height INTEGER, max_depth INTEGER,
+  threads INTEGER, git_commit TEXT, finished_at TEXT,
+  PRIMARY KEY (scene, sampler, spp, seed));
+CREATE TABLE IF NOT EXISTS "references" (
+  scene TEXT PRIMARY KEY, sampler TEXT, spp INTEGER, seconds REAL, cache_key TEXT,
+  noise_mse REAL, noise_relmse REAL, exposure REAL, image TEXT);
+CREATE TABLE IF NOT EXISTS study (key TEXT PRIMARY KEY, value TEXT);
+)sql";
+
+constexpr const char* kCellColumns =
+    "scene, sampler, spp, seed, seconds, mse, rmse, relmse, flip, flip_median, psnr, "
+    "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at";
+
+// A prepared statement that finalises itself; binds by 1-based position.
+class Statement {
+  public:
+    Statement(sqlite3* db, const std::string& sql) : db_(db) {
+        if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+            throw std::runtime_error(std::string("SQLite: ") + sqlite3_errmsg(db));
+    }
+    ~Statement() { sqlite3_finalize(stmt_); }
+    Statement(const Statement&) = delete;
+    Statement& operator=(const Statement&) = delete;
+
+    void bind(int i, const std::string& v) {
+        sqlite3_bind_text(stmt_, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT);
+    }
+    void bind(int i, int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
+    void bind(int i, double v) { sqlite3_bind_double(stmt_, i, v); }
+    void bind(int i, const std::optional<double>& v) {
+        if (v)
+            bind(i, *v);
+        else
+            sqlite3_bind_null(stmt_, i);
+    }
+    // True while there is a row to read.
+    bool step() {
+        const int rc = sqlite3_step(stmt_);
+        if (rc == SQLITE_ROW) return true;
+        if (rc == SQLITE_DONE) return false;
+        throw std::runtime_error(std::string("SQLite: ") + sqlite3_errmsg(db_));
+    }
+    std::string text(int i) const {
+        const auto* p = sqlite3_column_text(stmt_, i);
+        return p ? reinterpret_cast<const char*>(p) : "";
+    }
+    int64_t integer(int i) const { return sqlite3_column_int64(stmt_, i); }
+    double real(int i) const { return sqlite3_column_double(stmt_, i); }
+    std::optional<double> optionalReal(int i) const {
+        if (sqlite3_column_type(stmt_, i) == SQLITE_NULL) return std::nullopt;
+        return real(i);
+    }
+
+  private:
+    sqlite3* db_;
+    sqlite3_stmt* stmt_ = nullptr;
+};
+
+CellRow readCell(const Statement& s) {
+    CellRow r;
+    r.key = {s.text(0), s.text(1), int(s.integer(2)), int(s.integer(3))};
+    r.seconds = s.real(4);
+    r.mse = s.real(5);
+    r.rmse = s.real(6);
+    r.relmse = s.optionalReal(7);
+    r.flip = s.optionalReal(8);
+    r.flipMedian = s.optionalReal(9);
+    r.psnr = s.optionalReal(10);
+    r.nonFinite = s.integer(11);
+    r.image = s.text(12);
+    r.width = int(s.integer(13));
+    r.height = int(s.integer(14));
+    r.maxDepth = int(s.integer(15));
+    r.threads = int(s.integer(16));
+    r.gitCommit = s.text(17);
+    r.finishedAt = s.text(18);
+    return r;
+}
+
+}  // namespace
+
+bool CellKey::operator<(const CellKey& o) const {
+    return std::tie(scene, sampler, spp, seed) < std::tie(o.scene, o.sampler, o.spp, o.seed);
+}
+
+ResultsStore::ResultsStore(const std::string& path, bool readOnly) : path_(path) {
+    const int flags = readOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+        const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+        sqlite3_close(db_);
+        throw InputError("cannot open study database '" + path + "': " + why);
+    }
+    // Another process (a report, a test) may read while we write.
+    sqlite3_busy_timeout(db_, 10000);
+    if (readOnly) return;
+    try {
+        // WAL: a commit is one append, and a kill mid-write leaves the last
+        // committed state readable. FULL: each committed cell survives even
+        // a power cut, at the price of one fsync per cell.
+        exec("PRAGMA journal_mode=WAL");
+        exec("PRAGMA synchronous=FULL");
+        exec(kSchema);
+    } catch (const std::exception& e) {
+        sqlite3_close(db_);
+        throw InputError("'" + path + "' is not a usable study database: " + e.what());
+    }
+}
+
+ResultsStore::~ResultsStore() {
+    sqlite3_close(db_);
+}
+
+void ResultsStore::exec(const char* sql) const {
+    char* error = nullptr;
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
+        const std::string why = error ? error : "unknown error";
+        sqlite3_free(error);
+        throw std::runtime_error("SQLite: " + why);
+    }
+}
+
+void ResultsStore::putCell(const CellRow& r) {
+    Statement s(db_, std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
+                         ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
+    s.bind(1, r.key.scene);
+    s.bind(2, r.key.sampler);
+    s.bind(3, int64_t(r.key.spp));
+    s.bind(4, int64_t(r.key.seed));
+    s.bind(5, r.seconds);
+    s.bind(6, r.mse);
+    s.bind(7, r.rmse);
+    s.bind(8, r.relmse);
+    s.bind(9, r.flip);
+    s.bind(10, r.flipMedian);
+    s.bind(11, r.psnr);
+    s.bind(12, r.nonFinite);
+    s.bind(13, r.image);
+    s.bind(14, int64_t(r.width));
+    s.bind(15, int64_t(r.height));
+    s.bind(16, int64_t(r.maxDepth));
+    s.bind(17, int64_t(r.threads));
+    s.bind(18, r.gitCommit);
+    s.bind(19, r.finishedAt);
+    // A single statement is its own transaction: the row is there whole or not at all.
+    s.step();
+}
+
+std::vector<CellRow> ResultsStore::queryCells(const std::string& where, const CellKey* key) const {
+    Statement s(db_, std::string("SELECT ") + kCellColumns + " FROM cells " + where);
+    if (key) {
+        s.bind(1, key->scene);
+        s.bind(2, key->sampler);
+        s.bind(3, int64_t(key->spp));
+        s.bind(4, int64_t(key->seed));
+    }
+    std::vector<CellRow> out;
+    while (s.step()) out.push_back(readCell(s));
+    return out;
+}
+
+std::optional<CellRow> ResultsStore::cell(const CellKey& key) const {
+    auto rows = queryCells("WHERE scene=? AND sampler=? AND spp=? AND seed=?", &key);
+    if (rows.empty()) return std::nullopt;
+    return rows.front();
+}
+
+std::vector<CellRow> ResultsStore::cells() const {
+    return queryCells("ORDER BY rowid", nullptr);
+}
+
+int64_t ResultsStore::cellCount() const {
+    Statement s(db_, "SELECT COUNT(*) FROM cells");
+    s.step();
+    return s.integer(0);
+}
+
+void ResultsStore::putReference(const ReferenceRow& r) {
+    Statement s(db_,
+                "INSERT OR REPLACE INTO \"references\" (scene, sampler, spp, seconds, cache_key, "
+                "noise_mse, noise_relmse, exposure, image) VALUES (?,?,?,?,?,?,?,?,?)");
+    s.bind(1, r.scene);
+    s.bind(2, r.sampler);
+    s.bind(3, int64_t(r.spp));
+    s.bind(4, r.seconds);
+    s.bind(5, r.cacheKey);
+    s.bind(6, r.noiseMse);
+    s.bind(7, r.noiseRelmse);
+    s.bind(8, r.exposure);
+    s.bind(9, r.image);
+    s.step();
+}
+
+std::vector<ReferenceRow> ResultsStore::references() const {
+    Statement s(db_,
+                "SELECT scene, sampler, spp, seconds, cache_key, noise_mse, noise_relmse, "
+                "exposure, image FROM \"references\" ORDER BY rowid");
+    std::vector<ReferenceRow> out;
+    while (s.step())
+        out.push_back({s.text(0), s.text(1), int(s.integer(2)), s.real(3), s.text(4), s.real(5),
+                       s.real(6), s.real(7), s.text(8)});
+    return out;
+}
+
+void ResultsStore::setStudyValues(const std::map<std::string, std::string>& values) {
+    exec("BEGIN IMMEDIATE");
+    try {
+        for (const auto& [k, v] : values) {
+            Statement s(db_, "INSERT OR REPLACE INTO study (key, value) VALUES (?, ?)");
+            s.bind(1, k);
+            s.bind(2, v);
+            s.step();
+        }
+        exec("COMMIT");
+    } catch (...) {
+        exec("ROLLBACK");
+        throw;
+    }
+}
+
+std::map<std::string, std::string> ResultsStore::studyValues() const {
+    Statement s(db_, "SELECT key, value FROM study");
+    std::map<std::string, std::string> out;
+    while (s.step()) out[s.text(0)] = s.text(1);
+    return out;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,298 @@
+#include "study/runner.h"
+
+#include <tbb/info.h>
+
+#include <chrono>
+#include <memory>
+
+#include "core/error.h"
+#include "metrics/error_map.h"
+#include "render/renderer.h"
+#include "scene/loader.h"
+#include "study/analysis.h"
+#include "study/cell_metrics.h"
+#include "study/exports.h"
+#include "study/files.h"
+#include "study/progress.h"
+#include "study/reference_cache.h"
+#include "study/results_store.h"
+#include "study/summary.h"
+
+namespace pathlab {
+namespace {
+namespace fs = std::filesystem;
+
+// Flip, tone mapping and file writing per cell, in samples per pixel: makes
+// the ETA right for the many cheap low-spp cells.
+constexpr double kCellOverheadSpp = 4.0;
+
+struct SceneJob {
+    StudyScene scene;
+    std::unique_ptr<RenderScene> render;
+    std::string cacheKey;
+};
+
+// Everything a cell needs besides its key.
+struct StudyContext {
+    const StudySpec& spec;
+    const StudyOptions& options;
+    ResultsStore& store;
+    StudyProgress& progress;
+    StudyRun& run;
+    int threads = 0;  // as used, for the record
+};
+
+std::string cellStem(const CellKey& k) {
+    return "images/" + k.scene + "/" + k.sampler + "/spp" + std::to_string(k.spp) + "-seed" +
+           std::to_string(k.seed);
+}
+
+double pixels(const StudySpec& spec) {
+    return double(spec.resolution.x) * spec.resolution.y;
+}
+
+double cellWork(const StudySpec& spec, int spp) {
+    return pixels(spec) * (spp + kCellOverheadSpp);
+}
+
+std::vector<CellKey> sceneCells(const StudySpec& spec, const std::string& scene) {
+    // Seeds outermost: a study cut short still has every sampler at every
+    // spp for the first seeds, which is a complete comparison.
+    std::vector<CellKey> out;
+    for (int seed = 0; seed < spec.seeds; ++seed)
+        for (int spp : spec.spp)
+            for (const std::string& sampler : spec.samplers)
+                out.push_back({scene, sampler, spp, seed});
+    return out;
+}
+
+bool cellComplete(const fs::path& dir, const ResultsStore& store, const CellKey& key) {
+    const auto row = store.cell(key);
+    if (!row || !fs::is_regular_file(dir / row->image)) return false;
+    return key.seed != 0 || fs::is_regular_file(dir / (cellStem(key) + ".png"));
+}
+
+bool directoryIsEmpty(const fs::path& dir) {
+    std::error_code ec;
+    return !fs::exists(dir, ec) || fs::is_empty(dir, ec);
+}
+
+void prepareDirectory(const StudySpec& spec, const StudyOptions& o) {
+    const fs::path& dir = o.dir;
+    const bool empty = directoryIsEmpty(dir);
+    if (!empty && !o.resume)
+        throw InputError("'" + dir.string() +
+                         "' is not empty: add --resume to continue the study in it, or choose "
+                         "another directory");
+    if (!empty) {
+        if (!fs::is_regular_file(dir / "spec.toml"))
+            throw InputError("'" + dir.string() + "' is not a study directory (no spec.toml)");
+        const std::string diff =
+            firstSpecDifference(loadStudySpec((dir / "spec.toml").string()), spec);
+        if (!diff.empty())
+            throw InputError("'" + dir.string() + "' holds a study whose '" + diff +
+                             "' differs from this spec: choose another directory");
+    }
+    std::error_code ec;
+    fs::create_directories(dir / "references", ec);
+    if (ec)
+        throw InputError("cannot create '" + (dir / "references").string() + "': " + ec.message());
+    writeTextFileAtomic(dir / "spec.toml", studySpecToToml(spec));
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
+    return out;
+}
+
+void recordStudy(const StudySpec& spec, ResultsStore& store) {
+    const auto existing = store.studyValues();
+    const auto created = existing.find("created_at");
+    store.setStudyValues({
+        {"name", spec.name},
+        {"created_at", created != existing.end() ? created->second : isoTimestampUtc()},
+        {"git_commit", sourceGitCommit()},
+        {"width", std::to_string(spec.resolution.x)},
+        {"height", std::to_string(spec.resolution.y)},
+        {"max_depth", std::to_string(spec.maxDepth)},
+        {"russian_roulette", spec.russianRoulette ? "true" : "false"},
+        {"reference_spp", std::to_string(spec.reference.spp)},
+        {"reference_sampler", spec.reference.sampler},
+        {"reference_seed", std::to_string(spec.reference.seed)},
+        {"time_budget_seconds",
+         spec.timeBudgetSeconds ? nlohmann::json(*spec.timeBudgetSeconds).dump() : ""},
+        {"metrics", joined(spec.metrics)},
+    });
+}
+
+std::vector<SceneJob> loadScenes(const StudySpec& spec) {
+    std::vector<SceneJob> jobs;
+    for (const StudyScene& s : spec.scenes) {
+        SceneDescription description = loadScene(s.source);
+        const std::string key = referenceCacheKey(description, s, spec);
+        jobs.push_back({s, std::make_unique<RenderScene>(std::move(description)), key});
+    }
+    return jobs;
+}
+
+// From the cache, else from this study's own copy (a resumed study whose
+// cache was cleared), else rendered — and cached for the studies to come.
+Reference obtainReference(const SceneJob& job, StudyContext& ctx) {
+    const ReferenceCache cache = ReferenceCache::standard();
+    const std::string what = job.scene.name + " (" + std::to_string(ctx.spec.reference.spp) +
+                             " spp " + ctx.spec.reference.sampler + ", " +
+                             std::to_string(ctx.spec.resolution.x) + "x" +
+                             std::to_string(ctx.spec.resolution.y) + ")";
+    if (auto cached = cache.load(job.cacheKey)) {
+        ctx.progress.message("reference: cached " + what);
+        ++ctx.run.referencesReused;
+        return std::move(*cached);
+    }
+    const fs::path own = ctx.options.dir / "references" / (job.scene.name + ".exr");
+    for (const ReferenceRow& row : ctx.store.references()) {
+        if (row.scene != job.scene.name || row.cacheKey != job.cacheKey) continue;
+        if (!fs::is_regular_file(own)) break;
+        ctx.progress.message("reference: from the study directory " + what);
+        Reference r{readImage(own.string()),
+                    row.seconds,
+                    {row.noiseMse, row.noiseRelmse},
+                    float(row.exposure),
+                    row.cacheKey};
+        cache.store(r, job.scene, ctx.spec);
+        ++ctx.run.referencesReused;
+        return r;
+    }
+    ctx.progress.message("rendering reference: " + what);
+    Reference r = renderReference(*job.render, ctx.spec, ctx.options.threads, job.cacheKey);
+    cache.store(r, job.scene, ctx.spec);
+    ++ctx.run.referencesRendered;
+    ctx.progress.addWorkDone(pixels(ctx.spec) * ctx.spec.reference.spp);
+    return r;
+}
+
+void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ctx) {
+    const std::string stem = "references/" + job.scene.name;
+    writeImage((ctx.options.dir / (stem + ".exr")).string(), ref.image);
+    writeImage((ctx.options.dir / (stem + ".png")).string(), ref.image, ref.exposure);
+    ctx.store.putReference({job.scene.name, ctx.spec.reference.sampler, ctx.spec.reference.spp,
+                            ref.seconds, ref.cacheKey, ref.noise.mse, ref.noise.relmse,
+                            ref.exposure, stem + ".exr"});
+}
+
+// The images first, each renamed into place; the row last, in one
+// transaction: a row always points at complete images.
+void writeCellImages(const fs::path& dir, const CellKey& key, const Image& image,
+                     const Reference& ref, const CellMetrics& m) {
+    const std::string stem = (dir / cellStem(key)).string();
+    writeImage(stem + ".exr", image);
+    if (key.seed != 0) return;
+    if (!m.flipMap.empty()) writeErrorMap(stem + "-flip.png", m.flipMap, image.width, image.height);
+    writeErrorMap(stem + "-relse.png", relativeSquaredErrorMap(ref.image, image), image.width,
+                  image.height);
+    writeImage(stem + ".png", image, ref.exposure);  // last: cellComplete looks for it
+}
+
+void renderCell(const SceneJob& job, const Reference& ref, const CellKey& key, StudyContext& ctx) {
+    RenderSettings s;
+    s.sampler = key.sampler;
+    s.samplesPerPixel = key.spp;
+    s.seed = uint64_t(key.seed);
+    s.resolution = ctx.spec.resolution;
+    s.maxDepth = ctx.spec.maxDepth;
+    s.russianRoulette = ctx.spec.russianRoulette;
+    s.threads = ctx.options.threads;
+    const RenderOutput out = render(*job.render, s);
+    const CellMetrics m = measureCell(ref.image, out.image, ref.exposure, ctx.spec);
+    fs::create_directories((ctx.options.dir / cellStem(key)).parent_path());
+    writeCellImages(ctx.options.dir, key, out.image, ref, m);
+    CellRow row{key,
+                out.stats.seconds,
+                m.mse,
+                m.rmse,
+                m.relmse,
+                m.flip,
+                m.flipMedian,
+                m.psnr,
+                int64_t(out.stats.nonFinite),
+                cellStem(key) + ".exr",
+                ctx.spec.resolution.x,
+                ctx.spec.resolution.y,
+                ctx.spec.maxDepth,
+                ctx.threads,
+                sourceGitCommit(),
+                isoTimestampUtc()};
+    ctx.store.putCell(row);
+}
+
+std::string cellLabel(const CellKey& k) {
+    return k.scene + " " + k.sampler + " " + std::to_string(k.spp) + " spp seed " +
+           std::to_string(k.seed);
+}
+
+void runScene(const SceneJob& job, StudyContext& ctx) {
+    const std::vector<CellKey> cells = sceneCells(ctx.spec, job.scene.name);
+    std::vector<CellKey> todo;
+    for (const CellKey& key : cells) {
+        if (cellComplete(ctx.options.dir, ctx.store, key)) {
+            ctx.progress.skipped(cellWork(ctx.spec, key.spp));
+            ++ctx.run.cellsSkipped;
+        } else {
+            todo.push_back(key);
+        }
+    }
+    const Reference ref = obtainReference(job, ctx);
+    recordReference(job, ref, ctx);
+    for (const CellKey& key : todo) {
+        renderCell(job, ref, key, ctx);
+        ++ctx.run.cellsRendered;
+        ctx.progress.rendered(cellLabel(key), cellWork(ctx.spec, key.spp));
+    }
+}
+
+// All the study's work, in samples: every cell, and the references not yet
+// in the cache. (Cells found done are subtracted as the run skips them.)
+double totalWork(const StudySpec& spec, const std::vector<SceneJob>& jobs) {
+    const ReferenceCache cache = ReferenceCache::standard();
+    double work = 0;
+    for (const SceneJob& job : jobs) {
+        if (!cache.contains(job.cacheKey)) work += pixels(spec) * spec.reference.spp;
+        for (const CellKey& key : sceneCells(spec, job.scene.name)) work += cellWork(spec, key.spp);
+    }
+    return work;
+}
+
+void finishStudy(const StudySpec& spec, const StudyOptions& o, ResultsStore& store, StudyRun& run) {
+    const std::vector<ReferenceRow> references = store.references();
+    run.analysis = analyzeStudy(store.cells(), references, spec.timeBudgetSeconds);
+    writeExports(o.dir, store, run.analysis);
+    std::fprintf(stderr, "\n%s", summaryTable(run.analysis, references).c_str());
+}
+
+}  // namespace
+
+StudyRun runStudy(const StudySpec& spec, const StudyOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    prepareDirectory(spec, options);
+    ResultsStore store((options.dir / "results.sqlite").string());
+    recordStudy(spec, store);
+    const std::vector<SceneJob> jobs = loadScenes(spec);
+    const int totalCells =
+        int(spec.scenes.size() * spec.samplers.size() * spec.spp.size()) * spec.seeds;
+    StudyProgress progress(totalCells, totalWork(spec, jobs));
+    StudyRun run;
+    StudyContext ctx{
+        spec,  options,
+        store, progress,
+        run,   options.threads > 0 ? options.threads : tbb::info::default_concurrency()};
+    for (const SceneJob& job : jobs) runScene(job, ctx);
+    progress.finish();
+    finishStudy(spec, options, store, run);
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "study: %d cells rendered, %d already done, in %s; results in %s\n",
+                 run.cellsRendered, run.cellsSkipped, formatDuration(run.seconds).c_str(),
+                 options.dir.string().c_str());
+    return run;
+}
+
+}  // namespace pathlab

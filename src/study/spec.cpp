@@ -1,0 +1,322 @@
+#include "study/spec.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "sampling/registry.h"
+#include "scene/loader.h"
+
+namespace pathlab {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int64_t kMaxSpp = int64_t(1) << 24;  // the renderer's limit
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+std::vector<std::string> samplerNames() {
+    std::vector<std::string> names;
+    for (const SamplerInfo& info : samplerInfos()) names.push_back(info.name);
+    return names;
+}
+
+// Turns toml++'s nodes into spec values; every complaint carries the source
+// name, the line and the key, which is all a user needs to fix the file.
+class SpecReader {
+  public:
+    SpecReader(std::string source, fs::path baseDir)
+        : source_(std::move(source)), baseDir_(std::move(baseDir)) {}
+
+    [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
+                           const std::string& problem) const {
+        throw InputError(source_ + ":" + std::to_string(where.begin.line) + ": key '" + key + "' " +
+                         problem);
+    }
+    [[noreturn]] void failType(const toml::node& n, const std::string& key,
+                               const std::string& expected) const {
+        std::ostringstream type;
+        type << n.type();
+        fail(n.source(), key, "must be " + expected + ", got " + type.str());
+    }
+
+    int64_t integer(const toml::node& n, const std::string& key, int64_t lo, int64_t hi) const {
+        if (!n.is_integer()) failType(n, key, "an integer");
+        const int64_t v = n.as_integer()->get();
+        if (v < lo || v > hi)
+            fail(n.source(), key,
+                 "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " +
+                     std::to_string(v));
+        return v;
+    }
+    double positiveNumber(const toml::node& n, const std::string& key) const {
+        if (!n.is_number()) failType(n, key, "a number");
+        const double v = n.value<double>().value_or(0.0);
+        if (!(v > 0) || !std::isfinite(v)) fail(n.source(), key, "must be a positive number");
+        return v;
+    }
+    std::string string(const toml::node& n, const std::string& key) const {
+        if (!n.is_string()) failType(n, key, "a string");
+        return n.as_string()->get();
+    }
+    bool boolean(const toml::node& n, const std::string& key) const {
+        if (!n.is_boolean()) failType(n, key, "true or false");
+        return n.as_boolean()->get();
+    }
+    const toml::array& array(const toml::node& n, const std::string& key) const {
+        if (!n.is_array()) failType(n, key, "an array");
+        const toml::array& a = *n.as_array();
+        if (a.empty()) fail(n.source(), key, "must not be empty");
+        return a;
+    }
+    // A non-empty list of distinct strings, each one of `allowed` when given.
+    std::vector<std::string> names(const toml::node& n, const std::string& key,
+                                   const std::vector<std::string>& allowed,
+                                   const std::string& what) const {
+        std::vector<std::string> out;
+        const toml::array& a = array(n, key);
+        for (size_t i = 0; i < a.size(); ++i) {
+            const std::string item = key + "[" + std::to_string(i) + "]";
+            std::string v = string(a[i], item);
+            if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+                fail(a[i].source(), item,
+                     "names an unknown " + what + " '" + v + "' (known: " + joined(allowed) + ")");
+            if (std::find(out.begin(), out.end(), v) != out.end())
+                fail(a[i].source(), item, "repeats '" + v + "'");
+            out.push_back(std::move(v));
+        }
+        return out;
+    }
+    void onlyKeys(const toml::table& t, const std::string& prefix,
+                  const std::vector<std::string>& allowed) const {
+        for (auto&& [k, v] : t) {
+            const std::string name(k.str());
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+                fail(k.source(), prefix + name,
+                     "is not a study spec key (known: " + joined(allowed) + ")");
+        }
+    }
+    const toml::node& required(const toml::table& t, const std::string& key) const {
+        const toml::node* n = t.get(key);
+        if (!n) throw InputError(source_ + ": key '" + key + "' is missing (it is required)");
+        return *n;
+    }
+
+    std::vector<StudyScene> scenes(const toml::node& n) const;
+    std::vector<int> sppList(const toml::node& n) const;
+    Vec2i resolution(const toml::node& n) const;
+    ReferenceSpec reference(const toml::node& n) const;
+
+  private:
+    StudyScene scene(const toml::node& n, const std::string& key) const;
+
+    std::string source_;
+    fs::path baseDir_;
+};
+
+StudyScene SpecReader::scene(const toml::node& n, const std::string& key) const {
+    const std::string v = string(n, key);
+    const std::vector<std::string> builtins = builtinSceneNames();
+    if (std::find(builtins.begin(), builtins.end(), v) != builtins.end()) return {v, v};
+    fs::path p(v);
+    if (p.is_relative()) p = baseDir_ / p;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+        fail(n.source(), key,
+             "names '" + v + "': neither a built-in scene (" + joined(builtins) +
+                 ") nor an existing scene file");
+    const std::string ext = p.extension().string();
+    if (ext != ".json" && ext != ".obj")
+        fail(n.source(), key, "names '" + v + "': a scene file must be .json or .obj");
+    return {p.stem().string(), fs::absolute(p).lexically_normal().string()};
+}
+
+std::vector<StudyScene> SpecReader::scenes(const toml::node& n) const {
+    std::vector<StudyScene> out;
+    const toml::array& a = array(n, "scenes");
+    for (size_t i = 0; i < a.size(); ++i) {
+        const std::string key = "scenes[" + std::to_string(i) + "]";
+        StudyScene s = scene(a[i], key);
+        for (const StudyScene& other : out)
+            if (other.name == s.name)
+                fail(a[i].source(), key, "gives a second scene named '" + s.name + "'");
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+std::vector<int> SpecReader::sppList(const toml::node& n) const {
+    std::vector<int> out;
+    const toml::array& a = array(n, "spp");
+    for (size_t i = 0; i < a.size(); ++i) {
+        const std::string key = "spp[" + std::to_string(i) + "]";
+        const int v = int(integer(a[i], key, 1, kMaxSpp));
+        if (std::find(out.begin(), out.end(), v) != out.end())
+            fail(a[i].source(), key, "repeats " + std::to_string(v));
+        out.push_back(v);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+Vec2i SpecReader::resolution(const toml::node& n) const {
+    const toml::array& a = array(n, "resolution");
+    if (a.size() != 2) fail(n.source(), "resolution", "must be [width, height]");
+    return {int(integer(a[0], "resolution[0]", 1, 16384)),
+            int(integer(a[1], "resolution[1]", 1, 16384))};
+}
+
+ReferenceSpec SpecReader::reference(const toml::node& n) const {
+    if (!n.is_table()) failType(n, "reference", "a table");
+    const toml::table& t = *n.as_table();
+    onlyKeys(t, "reference.", {"spp", "sampler", "seed"});
+    ReferenceSpec r;
+    if (const toml::node* v = t.get("spp")) r.spp = int(integer(*v, "reference.spp", 1, kMaxSpp));
+    if (const toml::node* v = t.get("sampler")) {
+        r.sampler = string(*v, "reference.sampler");
+        const std::vector<std::string> known = samplerNames();
+        if (std::find(known.begin(), known.end(), r.sampler) == known.end())
+            fail(v->source(), "reference.sampler",
+                 "names an unknown sampler '" + r.sampler + "' (known: " + joined(known) + ")");
+    }
+    if (const toml::node* v = t.get("seed"))
+        r.seed = uint64_t(integer(*v, "reference.seed", 0, INT64_MAX));
+    return r;
+}
+
+StudySpec readSpec(const toml::table& t, const SpecReader& in) {
+    in.onlyKeys(t, "",
+                {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
+                 "russian_roulette", "metrics", "time_budget_seconds", "reference"});
+    StudySpec s;
+    if (const toml::node* v = t.get("name")) {
+        s.name = in.string(*v, "name");
+        if (s.name.empty()) in.fail(v->source(), "name", "must not be empty");
+    }
+    s.scenes = in.scenes(in.required(t, "scenes"));
+    s.samplers = in.names(in.required(t, "samplers"), "samplers", samplerNames(), "sampler");
+    s.spp = in.sppList(in.required(t, "spp"));
+    if (const toml::node* v = t.get("seeds")) s.seeds = int(in.integer(*v, "seeds", 1, 10000));
+    if (const toml::node* v = t.get("resolution")) s.resolution = in.resolution(*v);
+    if (const toml::node* v = t.get("max_depth"))
+        s.maxDepth = int(in.integer(*v, "max_depth", 0, 1024));
+    if (const toml::node* v = t.get("russian_roulette"))
+        s.russianRoulette = in.boolean(*v, "russian_roulette");
+    if (const toml::node* v = t.get("metrics"))
+        s.metrics = in.names(*v, "metrics", knownStudyMetrics(), "metric");
+    if (const toml::node* v = t.get("time_budget_seconds"))
+        s.timeBudgetSeconds = in.positiveNumber(*v, "time_budget_seconds");
+    if (const toml::node* v = t.get("reference")) {
+        s.reference = in.reference(*v);
+        const toml::node* seed = v->as_table()->get("seed");
+        if (seed && s.reference.seed < uint64_t(s.seeds))
+            in.fail(seed->source(), "reference.seed",
+                    "must differ from the cells' seeds 0…" + std::to_string(s.seeds - 1));
+    }
+    return s;
+}
+
+std::string quoted(const std::string& s) {
+    return nlohmann::json(s).dump();
+}
+
+template <typename T, typename F>
+std::string tomlArray(const std::vector<T>& items, F format) {
+    std::string out = "[";
+    for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + format(items[i]);
+    return out + "]";
+}
+
+}  // namespace
+
+bool StudySpec::wants(const std::string& metric) const {
+    return metric == "mse" || std::find(metrics.begin(), metrics.end(), metric) != metrics.end();
+}
+
+const std::vector<std::string>& knownStudyMetrics() {
+    static const std::vector<std::string> names{"mse", "rmse", "relmse", "psnr", "flip"};
+    return names;
+}
+
+StudySpec parseStudySpec(const std::string& text, const std::string& sourceName,
+                         const std::string& baseDir) {
+    toml::table table;
+    try {
+        table = toml::parse(text, sourceName);
+    } catch (const toml::parse_error& e) {
+        const auto& where = e.source().begin;
+        throw InputError(sourceName + ":" + std::to_string(where.line) + ":" +
+                         std::to_string(where.column) +
+                         ": not valid TOML: " + std::string(e.description()));
+    }
+    return readSpec(table, SpecReader(sourceName, baseDir));
+}
+
+StudySpec loadStudySpec(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot read study spec '" + path + "'");
+    std::stringstream text;
+    text << in.rdbuf();
+    const fs::path base = fs::absolute(fs::path(path)).parent_path();
+    return parseStudySpec(text.str(), path, base.string());
+}
+
+std::string studySpecToToml(const StudySpec& s) {
+    const auto str = [](const std::string& v) { return quoted(v); };
+    const auto num = [](int v) { return std::to_string(v); };
+    std::vector<std::string> sources;
+    for (const StudyScene& scene : s.scenes) sources.push_back(scene.source);
+    std::ostringstream out;
+    out << "# The resolved study spec (docs/study-spec.toml explains every key).\n"
+        << "name = " << quoted(s.name) << "\n"
+        << "scenes = " << tomlArray(sources, str) << "\n"
+        << "samplers = " << tomlArray(s.samplers, str) << "\n"
+        << "spp = " << tomlArray(s.spp, num) << "\n"
+        << "seeds = " << s.seeds << "\n"
+        << "resolution = [" << s.resolution.x << ", " << s.resolution.y << "]\n"
+        << "max_depth = " << s.maxDepth << "\n"
+        << "russian_roulette = " << (s.russianRoulette ? "true" : "false") << "\n"
+        << "metrics = " << tomlArray(s.metrics, str) << "\n";
+    if (s.timeBudgetSeconds)
+        out << "time_budget_seconds = " << nlohmann::json(*s.timeBudgetSeconds).dump() << "\n";
+    out << "\n[reference]\n"
+        << "spp = " << s.reference.spp << "\n"
+        << "sampler = " << quoted(s.reference.sampler) << "\n"
+        << "seed = " << s.reference.seed << "\n";
+    return out.str();
+}
+
+std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
+    const auto sources = [](const StudySpec& s) {
+        std::vector<std::string> v;
+        for (const StudyScene& scene : s.scenes) v.push_back(scene.source);
+        return v;
+    };
+    if (a.name != b.name) return "name";
+    if (sources(a) != sources(b)) return "scenes";
+    if (a.samplers != b.samplers) return "samplers";
+    if (a.spp != b.spp) return "spp";
+    if (a.seeds != b.seeds) return "seeds";
+    if (a.resolution.x != b.resolution.x || a.resolution.y != b.resolution.y) return "resolution";
+    if (a.maxDepth != b.maxDepth) return "max_depth";
+    if (a.russianRoulette != b.russianRoulette) return "russian_roulette";
+    if (a.metrics != b.metrics) return "metrics";
+    if (a.timeBudgetSeconds != b.timeBudgetSeconds) return "time_budget_seconds";
+    if (a.reference.spp != b.reference.spp) return "reference.spp";
+    if (a.reference.sampler != b.reference.sampler) return "reference.sampler";
+    if (a.reference.seed != b.reference.seed) return "reference.seed";
+    return "";
+}
+
+}  // namespace pathlab

@@ -1,0 +1,68 @@
+// A study spec: which scenes, samplers, sample counts and seeds to render, at
+// which settings, against which reference. Read from TOML (docs/study-spec.toml
+// is the commented example), strictly: anything unexpected is an InputError
+// naming the key and its line, so a typo never silently changes a study.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace pathlab {
+
+// Differs from every seed a study's cells use (0, 1, 2, …), so the reference's
+// random numbers are independent of every cell's — a cell sharing them would
+// look closer to the reference than it is.
+inline constexpr uint64_t kDefaultReferenceSeed = 2718281828;
+
+struct ReferenceSpec {
+    int spp = 4096;
+    std::string sampler = "independent";
+    uint64_t seed = kDefaultReferenceSeed;
+};
+
+// One scene of a study: `name` names its rows and folders (the built-in name,
+// or the file's stem), `source` is what loadScene() gets (built-in name or
+// absolute path).
+struct StudyScene {
+    std::string name, source;
+};
+
+struct StudySpec {
+    std::string name = "study";
+    std::vector<StudyScene> scenes;
+    std::vector<std::string> samplers;
+    std::vector<int> spp;  // ascending, distinct
+    int seeds = 1;         // cells use seeds 0 … seeds−1
+    Vec2i resolution{256, 256};
+    int maxDepth = 8;
+    bool russianRoulette = true;
+    ReferenceSpec reference;
+    std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
+    std::optional<double> timeBudgetSeconds;
+
+    bool wants(const std::string& metric) const;
+};
+
+// The metric names a spec may list; "mse" is always computed.
+const std::vector<std::string>& knownStudyMetrics();
+
+// Parses and validates TOML text. `sourceName` prefixes messages
+// ("spec.toml:7: …"); relative scene paths are resolved against `baseDir`.
+StudySpec parseStudySpec(const std::string& text, const std::string& sourceName,
+                         const std::string& baseDir);
+
+// Reads and parses a spec file; relative scene paths are relative to it.
+StudySpec loadStudySpec(const std::string& path);
+
+// The spec as canonical TOML: every key explicit, scene paths absolute. What a
+// study directory keeps as spec.toml, and what --resume compares.
+std::string studySpecToToml(const StudySpec& spec);
+
+// The first key whose value differs between two specs, or "" when equal.
+std::string firstSpecDifference(const StudySpec& a, const StudySpec& b);
+
+}  // namespace pathlab

@@ -1,0 +1,91 @@
+// The study's analysis on artificial data, against numbers worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "study/analysis.h"
+
+namespace pathlab {
+namespace {
+
+CellRow cell(const std::string& sampler, int spp, int seed, double mse, double seconds) {
+    CellRow c;
+    c.key = {"scene", sampler, spp, seed};
+    c.mse = mse;
+    c.rmse = std::sqrt(mse);
+    c.relmse = 2 * mse;
+    c.seconds = seconds;
+    return c;
+}
+
+TEST(StudyAnalysis, LeastSquaresSlopeOfThreePoints) {
+    // x = 0,1,2; y = 0,−2,−3: x̄ = 1, ȳ = −5/3, Σ(x−x̄)(y−ȳ) = −3, Σ(x−x̄)² = 2.
+    const auto slope = leastSquaresSlope({0, 1, 2}, {0, -2, -3});
+    ASSERT_TRUE(slope.has_value());
+    EXPECT_DOUBLE_EQ(*slope, -1.5);
+    EXPECT_FALSE(leastSquaresSlope({1}, {1}).has_value());
+    EXPECT_FALSE(leastSquaresSlope({2, 2}, {1, 3}).has_value());
+}
+
+TEST(StudyAnalysis, SlopeIsLeastSquaresOfLogMseAboveTheNoiseFloor) {
+    // After removing the floor 0.01, the MSE (mean of two seeds) is 1, 1/4, 1/8
+    // at 1, 2, 4 spp: log2 points (0,0) (1,−2) (2,−3), slope −1.5 as above.
+    const double floor = 0.01;
+    const std::vector<CellRow> cells = {
+        cell("halton", 1, 0, 0.9 + floor, 1),   cell("halton", 1, 1, 1.1 + floor, 1),
+        cell("halton", 2, 0, 0.2 + floor, 2),   cell("halton", 2, 1, 0.3 + floor, 2),
+        cell("halton", 4, 0, 0.125 + floor, 4), cell("halton", 4, 1, 0.125 + floor, 4)};
+    const ReferenceRow ref{"scene", "independent", 1024, 1, "key", floor, 0.0, 0, "r.exr"};
+    const auto a = analyzeStudy(cells, {ref}, std::nullopt);
+    const auto& s = a["scenes"]["scene"];
+    EXPECT_DOUBLE_EQ(s["noise_floor_mse"].get<double>(), floor);
+    EXPECT_NEAR(s["samplers"]["halton"]["slope_mse"].get<double>(), -1.5, 1e-12);
+    const auto& bySpp = s["samplers"]["halton"]["by_spp"];
+    EXPECT_NEAR(bySpp["1"]["mse"].get<double>(), 1.0 + floor, 1e-12);
+    EXPECT_NEAR(bySpp["1"]["mse_min"].get<double>(), 0.9 + floor, 1e-12);
+    EXPECT_NEAR(bySpp["1"]["mse_max"].get<double>(), 1.1 + floor, 1e-12);
+    EXPECT_NEAR(bySpp["2"]["mse_corrected"].get<double>(), 0.25, 1e-12);
+    EXPECT_FALSE(bySpp["4"]["below_noise_floor"].get<bool>());
+    // No `independent` in the study: no ratios; no `standard`: no target.
+    EXPECT_TRUE(s["samplers"]["halton"]["mse_ratio_to_independent"].is_null());
+    EXPECT_TRUE(s["target_mse"].is_null());
+}
+
+TEST(StudyAnalysis, RatiosTargetAndEqualTime) {
+    // standard: MSE 0.4 → 0.1 over 1 → 4 spp (1 s → 4 s); independent twice
+    // the error; halton reaches 0.1 between 2 s (0.2) and 4 s (0.05).
+    const std::vector<CellRow> cells = {
+        cell("standard", 1, 0, 0.4, 1),    cell("standard", 4, 0, 0.1, 4),
+        cell("independent", 1, 0, 0.8, 1), cell("independent", 4, 0, 0.2, 4),
+        cell("halton", 1, 0, 0.2, 2),      cell("halton", 4, 0, 0.05, 4)};
+    const auto a = analyzeStudy(cells, {}, 3.0);
+    const auto& s = a["scenes"]["scene"];
+    EXPECT_DOUBLE_EQ(s["target_mse"].get<double>(), 0.1);
+    const auto& halton = s["samplers"]["halton"];
+    EXPECT_DOUBLE_EQ(halton["mse_ratio_to_independent"]["1"].get<double>(), 0.25);
+    EXPECT_DOUBLE_EQ(halton["mse_ratio_to_independent"]["4"].get<double>(), 0.25);
+    // log t = log 2 + (log 0.1 − log 0.2)/(log 0.05 − log 0.2)·(log 4 − log 2) → t = 2·√2.
+    EXPECT_NEAR(halton["time_to_target_seconds"].get<double>(), 2 * std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(s["samplers"]["standard"]["time_to_target_seconds"].get<double>(), 4, 1e-12);
+    // independent ends at 0.2 > 0.1: never reaches the target.
+    EXPECT_TRUE(s["samplers"]["independent"]["time_to_target_seconds"].is_null());
+    // Equal time at 3 s for standard: log-log between (1, 0.4) and (4, 0.1):
+    // slope −1, so mse = 0.4 / 3.
+    EXPECT_NEAR(s["samplers"]["standard"]["error_at_time_budget"]["mse"].get<double>(), 0.4 / 3,
+                1e-12);
+    EXPECT_NEAR(s["samplers"]["standard"]["slope_mse"].get<double>(), -1.0, 1e-12);
+}
+
+TEST(StudyAnalysis, TimeAndErrorInterpolationEdges) {
+    const std::vector<ErrorPoint> curve = {{1, 1.0}, {2, 0.5}, {4, 0.25}};
+    EXPECT_EQ(timeToReach(curve, 2.0), 1.0);  // reached at once
+    EXPECT_NEAR(*timeToReach(curve, 0.5), 2.0, 1e-12);
+    EXPECT_FALSE(timeToReach(curve, 0.1).has_value());
+    EXPECT_NEAR(*errorAtTime(curve, 2.0), 0.5, 1e-12);
+    EXPECT_NEAR(*errorAtTime(curve, std::sqrt(2.0)), std::sqrt(0.5), 1e-12);
+    EXPECT_FALSE(errorAtTime(curve, 0.5).has_value());
+    EXPECT_FALSE(errorAtTime(curve, 8.0).has_value());
+}
+
+}  // namespace
+}  // namespace pathlab
