@@ -178,3 +178,48 @@ TEST(CornellBox, ConvergesToOneImage) {
 
 }  // namespace
 }  // namespace pathlab
+
+namespace pathlab {
+namespace {
+
+// Direct lighting of a diffuse floor by a square light straight above, in a
+// scene whose far-away extra triangle makes the ray-offset epsilon large:
+// the shadow ray must still reach the light. Expected radiance at the point
+// under the light: (albedo/π)·∫ Le cosθ cosθ' / r² dA, integrated numerically.
+TEST(DirectLighting, MatchesIrradianceIntegralInALargeScene) {
+    SceneDescription s;
+    s.materials.push_back(Material{"floor", MaterialType::Diffuse, Vec3f(0.5f)});
+    Mesh floor;
+    floor.positions = {{-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    Mesh light;
+    const float h = 5, Le = 10;
+    light.positions = {{-0.5f, h, -0.5f}, {0.5f, h, -0.5f}, {0.5f, h, 0.5f}, {-0.5f, h, 0.5f}};
+    light.indices = {0, 1, 2, 0, 2, 3};
+    light.emission = Vec3f(Le);
+    Mesh far;
+    far.positions = {{600, 600, 600}, {601, 600, 600}, {600, 601, 600}};
+    far.indices = {0, 1, 2};
+    s.meshes = {floor, light, far};
+    s.camera = Camera{{0, 2, 0.001f}, {0, 0, 0}, {0, 0, 1}, 0.5f};
+    s.resolution = {8, 8};
+    const RenderScene scene(s);
+    RenderSettings settings;
+    settings.samplesPerPixel = 256;
+    settings.maxDepth = 1;
+    const RenderOutput out = render(scene, settings);
+    double irradiance = 0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double x = -0.5 + (i + 0.5) / n, z = -0.5 + (j + 0.5) / n;
+            const double r2 = x * x + z * z + h * h, cos = h / std::sqrt(r2);
+            irradiance += Le * cos * cos / r2 / (double(n) * n);
+        }
+    const double expected = 0.5 / M_PI * irradiance;
+    const ImageMean m = meanOf(out);
+    EXPECT_NEAR(m.mean, expected, 5 * m.standardError * std::sqrt(3.0) + 1e-3 * expected);
+}
+
+}  // namespace
+}  // namespace pathlab

@@ -41,8 +41,13 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
     if (isBlack(f)) return Vec3f(0.0f);
     ++counters.shadowRays;
-    const float tMax = std::isinf(ls->distance) ? ls->distance : ls->distance * (1 - 1e-4f);
-    if (scene.occluded(scene.offsetOrigin(si, ls->wi), ls->wi, tMax)) return Vec3f(0.0f);
+    // The shadow ray starts at the nudged origin, so its length is measured
+    // from there; stop just short of the light so it cannot block itself.
+    const Vec3f origin = scene.offsetOrigin(si, ls->wi);
+    const float tMax = std::isinf(ls->distance)
+                           ? ls->distance
+                           : length(si.p + ls->wi * ls->distance - origin) * (1 - 1e-4f);
+    if (scene.occluded(origin, ls->wi, tMax)) return Vec3f(0.0f);
     const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
     return f * ls->radiance * (weight / ls->pdf);
 }
