@@ -8,6 +8,8 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenexr-dev libpng-dev libtinyobjloader-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libsqlite3-dev libboost-dev
   libgtest-dev libbenchmark-dev
+  # The wolf scene, when it must be fetched from Debian's 0ad-data package.
+  libarchive-tools
   # The report: figures with matplotlib; its test drives Chromium from Node.
   python3-matplotlib python3-numpy chromium nodejs
 )
