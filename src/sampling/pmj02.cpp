@@ -25,7 +25,7 @@ Pmj02Tables::Pmj02Tables(int log2Size_, uint64_t seed) : log2Size(log2Size_) {
 Pmj02Sampler::Pmj02Sampler(const SamplerConfig& c) : spp_(c.samplesPerPixel), seed_(c.seed) {
     const int log2Size = std::min(24, log2Ceil(uint64_t(std::max(1, c.samplesPerPixel))));
     tables_ = std::make_shared<const Pmj02Tables>(log2Size, c.seed);
-    mask_ = (uint32_t(1) << log2Size) - 1;
+    log2Size_ = log2Size;
 }
 
 }  // namespace pathlab

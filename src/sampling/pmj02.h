@@ -14,8 +14,8 @@
 // precomputed; ours are generated and seeded). Lookups are then one table read.
 //
 // Use per pixel and dimension pair. Every 2D draw reads one table instance
-// (chosen by hashing pixel, dimension and seed) at an index XOR-shuffled by the
-// same hash, and applies a random digital shift. Both operations map
+// (chosen by hashing pixel, dimension and seed) at an index shuffled by a
+// nested scramble seeded by the same hash, and applies a random digital shift. Both operations map
 // elementary intervals to elementary intervals, so each pair of every pixel is
 // still a pmj02 sequence; different pairs and pixels are decorrelated
 // ("padding", Kollig & Keller 2002). 1D draws use the x coordinate. Native
@@ -68,13 +68,21 @@ class Pmj02Sampler {
   private:
     const uint32_t* lookup(uint64_t h) const {
         const int instance = static_cast<int>((h >> 40) % Pmj02Tables::kInstances);
-        return tables_->point(instance, (index_ ^ static_cast<uint32_t>(h)) & mask_);
+        // A nested (Owen) shuffle of the index's log2Size bits: the high bits
+        // of the result depend only on the high bits of the index, so aligned
+        // blocks map to aligned blocks (prefixes stay pmj02), while different
+        // pairs get unrelated orders (a plain XOR would tie them together).
+        const uint32_t shuffled =
+            log2Size_ == 0 ? 0
+                           : owenScramble(index_ << (32 - log2Size_), static_cast<uint32_t>(h)) >>
+                                 (32 - log2Size_);
+        return tables_->point(instance, shuffled);
     }
 
     int spp_;
     uint64_t seed_;
     std::shared_ptr<const Pmj02Tables> tables_;
-    uint32_t mask_ = 0;
+    int log2Size_ = 0;
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;
