@@ -16,7 +16,7 @@ mkdir -p "$work" "$artifacts"
 cat >"$work/spec.toml" <<'SPEC'
 name = "report-test"
 scenes = ["cornell-box"]
-samplers = ["independent", "halton-rd", "sobol-owen"]
+samplers = ["standard", "independent", "halton-rd"]
 spp = [1, 2, 4, 8]
 seeds = 2
 resolution = [48, 48]
