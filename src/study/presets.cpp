@@ -27,7 +27,7 @@ StudySpec seedPreset() {
     s.seeds = 3;
     s.resolution = {128, 128};
     s.reference.spp = 4096;
-    s.timeBudgetSeconds = 0.25;
+    s.timeBudgetSeconds = 1.0;
     return s;
 }
 
