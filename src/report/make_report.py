@@ -180,6 +180,8 @@ def results_table(study, scene):
     for i in range(len(cols)):
         present = [values[s][i] for s in samplers if values[s][i] is not None]
         winners.append(min(present) if present else None)
+    ratio_spp = {i: int(name.split("@")[1].split()[0]) for i, (name, _) in enumerate(cols)
+                 if "@" in name}
     head = "".join(f"<th>{esc(name)}</th>" for name, _ in cols)
     rows = []
     for s in samplers:
@@ -187,7 +189,11 @@ def results_table(study, scene):
         for i, v in enumerate(values[s]):
             win = v is not None and v == winners[i] and len(samplers) > 1
             cls = ' class="winner"' if win else ""
-            cells.append(f"<td{cls}>{esc(fmt(v))}</td>")
+            by_spp = analysis["samplers"][s].get("by_spp") or {}
+            floor = i in ratio_spp and (by_spp.get(str(ratio_spp[i])) or {}).get(
+                "below_noise_floor")
+            mark = '<sup title="within 2× the reference noise floor">*</sup>' if floor else ""
+            cells.append(f"<td{cls}>{esc(fmt(v))}{mark}</td>")
         rows.append(f'<tr><th><span class="swatch" style="background:{figures.colour(s)}"></span>'
                     f'{esc(s)}</th>{"".join(cells)}</tr>')
     target = analysis["target_mse"]
@@ -196,6 +202,11 @@ def results_table(study, scene):
     note += ("Slopes are least-squares fits of log error against log spp over the mean of the "
              "seeds (−1 is plain Monte Carlo). Ratios below 1 beat independent random numbers. "
              "Best value per column highlighted.")
+    correction = study.runner_analysis.get("mse_correction")
+    if correction:
+        note += f" MSE correction: {esc(correction.rstrip('.'))}."
+    if "<sup" in "".join(rows):
+        note += " * marks an MSE within twice the reference's noise floor: not meaningful."
     if "independent" not in samplers:
         note += " The study has no <b>independent</b> sampler, so ratios to it are omitted."
     return (f'<table class="results"><thead><tr><th>sampler</th>{head}</tr></thead>'
