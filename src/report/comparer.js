@@ -198,8 +198,10 @@
       this.label = el("div", { class: "vlabel" });
       this.viewport = el("div", { class: "viewport" }, this.canvas, this.label);
       this.status = el("div", { class: "status mono" });
-      this.legend = el("div", { class: "legend" }, el("span", {}, "0"),
-        el("span", { class: "bar" }), el("span", {}, "1 (FLIP)"));
+      this.legendLow = el("span", {});
+      this.legendHigh = el("span", {});
+      this.legend = el("div", { class: "legend" }, this.legendLow, el("span", { class: "bar" }),
+        this.legendHigh);
       const help = el("div", { class: "help" },
         "Hold R or hover \u201cReference\u201d to flip to the reference · hover a sampler to " +
         "preview, click to select · wheel zooms, drag pans, double-click fits · keys: 1\u20139 " +
@@ -273,10 +275,18 @@
       // Error maps are colour maps: exposure would change their meaning.
       const exposed = shown.view === "image" && st.exposure !== 0;
       this.canvas.style.filter = exposed ? `url(#${this.filterId})` : "none";
-      this.legend.style.visibility = shown.view === "flip" ? "visible" : "hidden";
+      // Both maps are magma: FLIP linear in [0, 1]; the relative squared error
+      // on a log scale from 1e-4 to 10 (docs/study-output.md).
+      const scale = { flip: ["0", "1 (FLIP)"], relse: ["10\u207b\u2074", "10 (rel. sq. error, log)"] };
+      this.legend.style.visibility = scale[shown.view] ? "visible" : "hidden";
+      if (scale[shown.view]) {
+        this.legendLow.textContent = scale[shown.view][0];
+        this.legendHigh.textContent = scale[shown.view][1];
+      }
       const e = shown.entry;
       this.label.textContent = shown.name === REFERENCE ? "Reference"
-        : `${shown.name} · ${st.spp} spp${shown.view !== "image" ? " · " + shown.view : ""}`;
+        : `${shown.name} · ${st.spp} spp` +
+          (shown.view !== "image" ? ` · ${VIEWS.find((v) => v[0] === shown.view)[1]}` : "");
       this.label.style.borderColor = colourOf(shown.name);
       this.statusText = shown.name === REFERENCE ? "reference"
         : `MSE ${fmt(e && e.mse_value)} · relMSE ${fmt(e && e.relmse_value)} · ` +
