@@ -23,7 +23,6 @@ test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	@PATHLAB_SETUP_EXTRAS=report scripts/setup.sh
 	@$(BUILD)/pathlab study --preset seed -o out/seed --resume
 	@$(BUILD)/pathlab report out/seed
 	@echo "Report: $(abspath out/seed/report/index.html)"
