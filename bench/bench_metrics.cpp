@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "core/hash.h"
 #include "core/image.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
@@ -13,13 +14,9 @@ namespace {
 
 using pathlab::Image;
 
+// A deterministic, platform-independent value in [0,1) (integer hash only).
 float hash01(uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return float(x >> 8) * (1.0f / 16777216.0f);
+    return float(pathlab::hash32(x) >> 8) * (1.0f / 16777216.0f);
 }
 
 // A render-like pair: smooth shading with a bright light (scaled by

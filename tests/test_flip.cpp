@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/image.h"
 #include "metrics/colormap.h"
 #include "metrics/error_map.h"
@@ -20,12 +21,7 @@ using flip::Color;
 
 // A deterministic, platform-independent value in [0,1) (integer hash only).
 float hash01(uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return float(x >> 8) * (1.0f / 16777216.0f);
+    return float(pathlab::hash32(x) >> 8) * (1.0f / 16777216.0f);
 }
 
 // Gradients, a disk and a checker patch; `light` adds a bright HDR spot.

@@ -138,11 +138,6 @@ TEST(RenderSettingsValidation, RejectsOutOfRangeValues) {
     EXPECT_THROW(validateRenderSettings(s), InputError);
 }
 
-}  // namespace
-}  // namespace pathlab
-
-namespace pathlab {
-namespace {
 
 // Two independent Cornell-box renders at 1024 and 4096 spp differ only by their
 // noise: per pixel and channel z = (a − b)/√(σa² + σb²) has unit variance.
@@ -176,11 +171,6 @@ TEST(CornellBox, ConvergesToOneImage) {
     EXPECT_GT(right.y, 2 * right.x);
 }
 
-}  // namespace
-}  // namespace pathlab
-
-namespace pathlab {
-namespace {
 
 // Direct lighting of a diffuse floor by a square light straight above, in a
 // scene whose far-away extra triangle makes the ray-offset epsilon large:
