@@ -5,7 +5,7 @@
 // typical path. Reported per drawn dimension, and separately for 1D and 2D.
 #include <benchmark/benchmark.h>
 
-#include "sampling/registry.h"
+#include "sampling/sampler_cost.h"
 
 namespace pathlab {
 namespace {
@@ -14,23 +14,6 @@ constexpr int kSpp = 64;
 constexpr int kDepth = 4;
 constexpr Vec2i kResolution{256, 256};
 
-// One path: pixel 2D + kDepth blocks of 1D, 2D, 1D, 2D, 1D = 2 + 7 kDepth dims.
-template <typename S>
-float drawPath(S& s, Vec2i pixel, int index) {
-    s.startPixelSample(pixel, index, 0);
-    Vec2f p = s.getPixel2D();
-    float acc = p.x + p.y;
-    for (int depth = 0; depth < kDepth; ++depth) {
-        s.startPixelSample(pixel, index, dims::bounceBase(depth));
-        acc += s.get1D();
-        const Vec2f light = s.get2D();
-        acc += s.get1D();
-        const Vec2f dir = s.get2D();
-        acc += light.x + light.y + dir.x + dir.y + s.get1D();
-    }
-    return acc;
-}
-
 void pathDimensions(benchmark::State& state, const std::string& name) {
     AnySampler sampler = makeSampler(name, SamplerConfig{kSpp, 1, kResolution});
     int64_t paths = 0;
@@ -38,14 +21,14 @@ void pathDimensions(benchmark::State& state, const std::string& name) {
         [&](auto& s) {
             int x = 0, y = 0, index = 0;
             for (auto _ : state) {
-                benchmark::DoNotOptimize(drawPath(s, Vec2i{x, y}, index));
+                benchmark::DoNotOptimize(drawPathDimensions(s, Vec2i{x, y}, index, kDepth));
                 ++paths;
                 if (++index == kSpp) index = 0, x = (x + 1) % kResolution.x, y += x == 0;
                 y %= kResolution.y;
             }
         },
         sampler);
-    const double dimsPerPath = 2 + 7.0 * kDepth;
+    const double dimsPerPath = dimensionsPerPath(kDepth);
     state.counters["ns/dim"] = benchmark::Counter(
         double(paths) * dimsPerPath, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }

@@ -169,5 +169,31 @@ TEST(SamplerValues, SamplesDoNotDependOnWhatWasDrawnBefore) {
     }
 }
 
+TEST(SamplerValues, IndependentIsPcg32AtTheSampleAndDimensionOffset) {
+    // Whatever order the renderer asks in (forward, backward, new sample, new
+    // pixel), dimension d of sample i in pixel p is the PCG32 output at offset
+    // i·stride + d of the stream hashed from (p, seed).
+    const uint64_t seed = 7;
+    IndependentSampler sampler(SamplerConfig{64, seed, {8, 8}});
+    std::mt19937 pick(3);
+    for (int call = 0; call < 2000; ++call) {
+        const Vec2i p{int(pick() % 3), int(pick() % 2)};
+        const int index = int(pick() % 6), dim = int(pick() % 40);
+        sampler.startPixelSample(p, index, dim);
+        Pcg32 plain(hashValues(p.x, p.y, seed), 0);
+        plain.advance(int64_t(index) * IndependentSampler::kStreamStride + dim);
+        const int draws = 1 + int(pick() % 4);
+        for (int k = 0; k < draws; ++k)
+            ASSERT_EQ(sampler.get1D(), plain.nextFloat()) << "call " << call << " draw " << k;
+    }
+}
+
+TEST(SamplerValues, PrecomputedJumpEqualsStepping) {
+    Pcg32 stepped(5, 0), jumped(5, 0);
+    for (int k = 0; k < 1000; ++k) stepped.nextUInt();
+    jumped.advance(Pcg32::jump(1000));
+    EXPECT_EQ(stepped.nextUInt(), jumped.nextUInt());
+}
+
 }  // namespace
 }  // namespace pathlab

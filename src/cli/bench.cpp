@@ -1,59 +1,201 @@
 // `pathlab bench`: the renderer's throughput on the built-in scenes at a fixed
-// workload (512×512, max depth 8, 64 spp, independent sampler).
-#include <nlohmann/json.hpp>
+// workload (512×512, max depth 8, 64 spp, independent sampler), and where the
+// time goes: the ray-tracing limit (the same frame's rays replayed through
+// Embree alone), thread scaling, memory per million triangles and, with
+// --samplers, each sampler's share of a frame.
+#include <sys/resource.h>
+#include <tbb/info.h>
 
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "render/renderer.h"
+#include "sampling/sampler_cost.h"
 #include "scene/loader.h"
+#include "scene/ray_replay.h"
 
 namespace pathlab::cli {
 namespace {
 
 struct BenchOptions {
     bool json = false;
+    bool samplers = false;
+    bool scaling = true;
     int spp = 64;
     int size = 512;
     int threads = 0;
     std::vector<std::string> scenes{"cornell-box", "wolf"};
+    int threadCount() const { return threads > 0 ? threads : tbb::info::default_concurrency(); }
 };
 
-nlohmann::json benchScene(const std::string& name, const BenchOptions& o) {
-    const RenderScene scene(loadScene(name));
+constexpr int kMaxDepth = 8;
+
+// Text lines go to stdout unless --json, where one JSON document does.
+void say(const BenchOptions& o, const char* format, auto... args) {
+    if (!o.json) std::printf(format, args...);
+}
+
+RenderSettings settingsFor(const BenchOptions& o, const std::string& sampler, int threads) {
     RenderSettings s;
+    s.sampler = sampler;
     s.samplesPerPixel = o.spp;
     s.resolution = {o.size, o.size};
-    s.maxDepth = 8;
-    s.threads = o.threads;
-    const RenderStats st = render(scene, s).stats;
-    const double rays = double(st.rays + st.shadowRays);
-    return {{"scene", name},
-            {"width", o.size},
-            {"height", o.size},
-            {"spp", o.spp},
-            {"max_depth", 8},
-            {"seconds", st.seconds},
-            {"paths", st.paths},
-            {"rays", st.rays + st.shadowRays},
-            {"shadow_rays", st.shadowRays},
-            {"paths_per_second", double(st.paths) / st.seconds},
-            {"rays_per_second", rays / st.seconds}};
+    s.maxDepth = kMaxDepth;
+    s.threads = threads;
+    return s;
+}
+
+double raysPerSecond(const RenderStats& st) {
+    return double(st.rays + st.shadowRays) / st.seconds;
+}
+
+// The frame's rays at 1 spp (same distribution as any spp) replayed through
+// Embree alone, in each query mode, with the renderer's thread count.
+nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double rendererRaysPerSecond) {
+    RayRecorder recorder;
+    scene.setRayRecorder(&recorder);
+    RenderSettings s = settingsFor(o, "independent", o.threads);
+    s.samplesPerPixel = 1;
+    render(scene, s);
+    scene.setRayRecorder(nullptr);
+    const std::vector<RecordedRay> rays = recorder.gather();
+    nlohmann::json modes = nlohmann::json::object();
+    double best = 0;
+    for (ReplayMode mode : {ReplayMode::Single, ReplayMode::Packet8, ReplayMode::Stream}) {
+        replayRays(scene.accel(), rays, mode, o.threads);  // warm caches
+        const ReplayResult r = replayRays(scene.accel(), rays, mode, o.threads);
+        modes[replayModeName(mode)] = r.raysPerSecond();
+        best = std::max(best, r.raysPerSecond());
+        say(o, "  embree alone, %-7s  %10.4g rays/s\n", replayModeName(mode).c_str(),
+            r.raysPerSecond());
+    }
+    const double efficiency = rendererRaysPerSecond / best;
+    say(o, "  efficiency (renderer rays/s / best raw)  %.2f\n", efficiency);
+    return {
+        {"recorded_rays", rays.size()}, {"raw_rays_per_second", modes}, {"efficiency", efficiency}};
+}
+
+nlohmann::json benchScene(const std::string& name, const BenchOptions& o) {
+    RenderScene scene(loadScene(name));
+    const RenderStats st = render(scene, settingsFor(o, "independent", o.threads)).stats;
+    say(o, "%-12s %dx%d %3d spp  %8.3f s  %10.4g paths/s  %10.4g rays/s  (%d threads)\n",
+        name.c_str(), o.size, o.size, o.spp, st.seconds, double(st.paths) / st.seconds,
+        raysPerSecond(st), o.threadCount());
+    nlohmann::json r = {{"scene", name},
+                        {"width", o.size},
+                        {"height", o.size},
+                        {"spp", o.spp},
+                        {"max_depth", kMaxDepth},
+                        {"threads", o.threadCount()},
+                        {"seconds", st.seconds},
+                        {"paths", st.paths},
+                        {"rays", st.rays + st.shadowRays},
+                        {"shadow_rays", st.shadowRays},
+                        {"paths_per_second", double(st.paths) / st.seconds},
+                        {"rays_per_second", raysPerSecond(st)}};
+    r["ray_limit"] = rayLimit(scene, o, raysPerSecond(st));
+    if (o.scaling && o.threadCount() > 1) {
+        const RenderStats one = render(scene, settingsFor(o, "independent", 1)).stats;
+        const double efficiency = one.seconds / (st.seconds * o.threadCount());
+        say(o, "  1 thread %.3f s; scaling to %d threads: %.1f%% efficient\n", one.seconds,
+            o.threadCount(), 100 * efficiency);
+        r["scaling"] = {{"seconds_1_thread", one.seconds}, {"efficiency", efficiency}};
+    }
+    return r;
+}
+
+// Resident set size now, in bytes (Linux /proc).
+double residentBytes() {
+    std::ifstream statm("/proc/self/statm");
+    double pages = 0, resident = 0;
+    statm >> pages >> resident;
+    return resident * double(sysconf(_SC_PAGESIZE));
+}
+
+// A flat grid of n×n vertices: 2(n−1)² triangles, lit by the environment.
+SceneDescription gridScene(int n) {
+    SceneDescription d;
+    d.name = "grid";
+    d.materials.push_back(Material{});
+    d.environment = Vec3f(1.0f);
+    Mesh m;
+    m.positions.reserve(size_t(n) * size_t(n));
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            m.positions.push_back({float(x), 0.01f * float((x * y) % 7), float(y)});
+    for (int y = 0; y + 1 < n; ++y)
+        for (int x = 0; x + 1 < n; ++x) {
+            const uint32_t a = uint32_t(y * n + x), b = a + 1, c = a + uint32_t(n), e = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, e, a, e, c});
+        }
+    d.meshes.push_back(std::move(m));
+    d.camera.eye = {float(n) / 2, float(n), float(n) / 2 - 1};
+    d.camera.target = {float(n) / 2, 0, float(n) / 2};
+    return d;
+}
+
+// Memory of a ready-to-render scene per million triangles: description,
+// Embree BVH, normals and light tables, measured as the growth of the process.
+nlohmann::json memoryPerMillionTriangles(const BenchOptions& o) {
+    const double before = residentBytes();
+    size_t triangles = 0;
+    double after = 0;
+    {
+        SceneDescription d = gridScene(708);
+        triangles = d.meshes[0].triangleCount();
+        const RenderScene scene(std::move(d));
+        after = residentBytes();
+    }
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const double perMillion = (after - before) / 1048576.0 / (double(triangles) / 1e6);
+    say(o, "memory: %.0f MiB per million triangles (%zu-triangle grid); peak RSS %.0f MiB\n",
+        perMillion, triangles, double(usage.ru_maxrss) / 1024.0);
+    return {{"triangles", triangles},
+            {"mib_per_million_triangles", perMillion},
+            {"peak_rss_mib", double(usage.ru_maxrss) / 1024.0}};
+}
+
+// Each sampler's frame on the Cornell box next to independent's, and the part
+// of it the sampler itself explains: ns per dimension × dimensions drawn.
+nlohmann::json samplerShares(const BenchOptions& o) {
+    const RenderScene scene(loadScene("cornell-box"));
+    nlohmann::json rows = nlohmann::json::array();
+    double independentSeconds = 0;
+    say(o, "sampler shares, cornell-box %dx%d %d spp:\n", o.size, o.size, o.spp);
+    for (const SamplerInfo& info : samplerInfos()) {
+        const RenderStats st = render(scene, settingsFor(o, info.name, o.threads)).stats;
+        if (info.name == "independent") independentSeconds = st.seconds;
+        const double ns = nanosecondsPerDimension(info.name, o.spp, {o.size, o.size}, 4, 200000);
+        // Dimensions are drawn on every thread at once.
+        const double samplerSeconds = ns * 1e-9 * double(st.dimensions) / o.threadCount();
+        rows.push_back({{"sampler", info.name},
+                        {"seconds", st.seconds},
+                        {"dimensions", st.dimensions},
+                        {"ns_per_dimension", ns},
+                        {"sampler_share", samplerSeconds / st.seconds}});
+    }
+    for (auto& row : rows) {
+        row["vs_independent"] = row["seconds"].get<double>() / independentSeconds - 1;
+        say(o, "  %-12s %8.3f s  %5.1f ns/dim  share %5.1f%%  vs independent %+6.1f%%\n",
+            row["sampler"].get<std::string>().c_str(), row["seconds"].get<double>(),
+            row["ns_per_dimension"].get<double>(), 100 * row["sampler_share"].get<double>(),
+            100 * row["vs_independent"].get<double>());
+    }
+    return rows;
 }
 
 void runBench(const BenchOptions& o) {
-    nlohmann::json results = nlohmann::json::array();
-    for (const std::string& name : o.scenes) {
-        nlohmann::json r = benchScene(name, o);
-        if (!o.json)
-            std::printf("%-12s %dx%d %3d spp  %8.3f s  %10.4g paths/s  %10.4g rays/s\n",
-                        name.c_str(), o.size, o.size, o.spp, r["seconds"].get<double>(),
-                        r["paths_per_second"].get<double>(), r["rays_per_second"].get<double>());
-        results.push_back(std::move(r));
-    }
-    if (o.json) std::cout << results.dump(2) << "\n";
+    nlohmann::json out;
+    out["memory"] = memoryPerMillionTriangles(o);
+    out["scenes"] = nlohmann::json::array();
+    for (const std::string& name : o.scenes) out["scenes"].push_back(benchScene(name, o));
+    if (o.samplers) out["samplers"] = samplerShares(o);
+    if (o.json) std::cout << out.dump(2) << "\n";
 }
 
 }  // namespace
@@ -63,12 +205,18 @@ void addBenchCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench", "Measure render throughput (512x512, depth 8, 64 spp, independent)");
     cmd->add_flag("--json", opts->json, "Print the results as JSON");
-    cmd->add_option("--spp", opts->spp, "Samples per pixel")->capture_default_str()
+    cmd->add_flag("--samplers", opts->samplers,
+                  "Also time every sampler's Cornell-box frame and its share of it");
+    cmd->add_flag("!--no-scaling", opts->scaling, "Skip the single-thread render");
+    cmd->add_option("--spp", opts->spp, "Samples per pixel")
+        ->capture_default_str()
         ->check(CLI::Range(1, 1 << 20));
-    cmd->add_option("--size", opts->size, "Image width and height")->capture_default_str()
+    cmd->add_option("--size", opts->size, "Image width and height")
+        ->capture_default_str()
         ->check(CLI::Range(1, 16384));
     cmd->add_option("--threads", opts->threads, "Worker threads (0 = all cores)")
-        ->capture_default_str()->check(CLI::Range(0, 4096));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4096));
     cmd->add_option("--scene", opts->scenes, "Scenes to render")->capture_default_str();
     cmd->callback([opts] { runBench(*opts); });
 }

@@ -10,7 +10,7 @@
 namespace pathlab {
 
 class Pcg32 {
-public:
+  public:
     static constexpr uint64_t kDefaultState = 0x853c49e6748fea9bULL;
     static constexpr uint64_t kDefaultStream = 0xda3e39cb94b95bdbULL;
     static constexpr uint64_t kMultiplier = 0x5851f42d4c957f2dULL;
@@ -52,6 +52,26 @@ public:
         return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
     }
 
+    // A jump by a fixed number of steps, precomputed: the LCG advanced by delta
+    // is state ↦ multiplier·state + increment·offsetFactor, and both factors
+    // depend only on delta (the increment enters linearly).
+    struct Jump {
+        uint64_t multiplier, offsetFactor;
+    };
+    static constexpr Jump jump(uint64_t delta) {
+        uint64_t curMult = kMultiplier, curPlus = 1u, accMult = 1u, accPlus = 0u;
+        for (; delta > 0; delta /= 2) {
+            if (delta & 1) {
+                accMult *= curMult;
+                accPlus = accPlus * curMult + curPlus;
+            }
+            curPlus = (curMult + 1) * curPlus;
+            curMult *= curMult;
+        }
+        return {accMult, accPlus};
+    }
+    void advance(const Jump& j) { state_ = j.multiplier * state_ + inc_ * j.offsetFactor; }
+
     // Jumps the generator by delta steps in O(log delta) (Brown 1994, "Random
     // Number Generation with Arbitrary Strides").
     void advance(int64_t idelta) {
@@ -69,7 +89,7 @@ public:
         state_ = accMult * state_ + accPlus;
     }
 
-private:
+  private:
     uint64_t state_ = kDefaultState;
     uint64_t inc_ = kDefaultStream;
 };

@@ -28,6 +28,7 @@ struct IntegratorSettings {
 struct PathCounters {
     uint64_t rays = 0;        // closest-hit rays: camera and bounce
     uint64_t shadowRays = 0;  // visibility rays of next-event estimation
+    uint64_t dimensions = 0;  // sampler dimensions drawn (a 2D draw counts 2)
 };
 
 // Next-event estimation at a non-specular vertex: one light sample, weighted
@@ -52,19 +53,25 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     return f * ls->radiance * (weight / ls->pdf);
 }
 
+// The radiance arriving along a path whose first segment (origin → first
+// surface, or escape when !found) has already been traced: the camera rays of
+// a pixel are traced together as a packet (renderer.cpp). Later rays are traced
+// here one at a time.
 template <Sampler S>
-Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, S& sampler,
-                       Vec2i pixel, int sampleIndex, const IntegratorSettings& settings,
-                       PathCounters& counters) {
+Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
+                       SurfaceInteraction si, S& sampler, Vec2i pixel, int sampleIndex,
+                       const IntegratorSettings& settings, PathCounters& counters) {
     const LightSet& lights = scene.lights();
     Vec3f L(0.0f), beta(1.0f), prevPoint;
     bool specularBounce = false;
     float prevBsdfPdf = 0;
     for (int depth = 0;; ++depth) {
-        SurfaceInteraction si;
-        ++counters.rays;
+        if (depth > 0) {
+            ++counters.rays;
+            found = scene.intersect(origin, dir, &si);
+        }
         const bool unweighted = depth == 0 || specularBounce;
-        if (!scene.intersect(origin, dir, &si)) {
+        if (!found) {
             const Vec3f env = lights.environment();
             if (!isBlack(env))
                 L += beta * env *
@@ -92,6 +99,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, S& sam
 
         const float uLobe = sampler.get1D();
         const Vec2f uDirection = sampler.get2D();
+        counters.dimensions += 6;
         const auto bs = bsdf.sample(wo, uLobe, uDirection);
         if (!bs) break;
         const Vec3f wi = frame.toWorld(bs->wi);
@@ -103,6 +111,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, S& sam
         dir = wi;
 
         const float uRoulette = sampler.get1D();
+        ++counters.dimensions;
         if (settings.russianRoulette && depth >= IntegratorSettings::kRouletteStartDepth) {
             const float q = std::max(0.0f, 1 - maxComponent(beta));
             if (uRoulette < q) break;

@@ -31,6 +31,20 @@ RenderScene::RenderScene(SceneDescription desc) : desc_(std::move(desc)) {
 bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
     RayHit hit;
     if (!accel_->intersect(o, d, std::numeric_limits<float>::infinity(), &hit)) return false;
+    fillInteraction(o, d, hit, si);
+    return true;
+}
+
+void RenderScene::intersectPacket(Vec3f o, const Vec3f* d, int count, SurfaceInteraction* si,
+                                  bool* found) const {
+    RayHit hits[kPacketWidth];
+    accel_->intersectPacket(o, d, count, hits, found);
+    for (int k = 0; k < count; ++k)
+        if (found[k]) fillInteraction(o, d[k], hits[k], &si[k]);
+}
+
+void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
+                                  SurfaceInteraction* si) const {
     si->p = o + d * hit.t;
     si->light = -1;
     if (hit.geomId == accel_->sphereGeometryId()) {
@@ -38,7 +52,7 @@ bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
         si->ng = si->ns = normalize(si->p - s.center);
         si->uv = {0, 0};
         si->material = s.material;
-        return true;
+        return;
     }
     const Mesh& mesh = desc_.meshes[hit.geomId];
     const unsigned* idx = &mesh.indices[3 * size_t(hit.primId)];
@@ -58,7 +72,6 @@ bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
     }
     si->material = mesh.material;
     si->light = lights_->lightOfTriangle(hit.geomId, hit.primId);
-    return true;
 }
 
 Vec3f RenderScene::offsetOrigin(const SurfaceInteraction& si, Vec3f w) const {
@@ -72,9 +85,12 @@ Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si) const {
         case MaterialType::Diffuse:
             return Bsdf::diffuse(m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv)
                                                 : m.albedo);
-        case MaterialType::Mirror: return Bsdf::mirror(m.albedo);
-        case MaterialType::Dielectric: return Bsdf::dielectric(m.ior);
-        case MaterialType::Conductor: return Bsdf::conductor(m.eta, m.k, m.roughness);
+        case MaterialType::Mirror:
+            return Bsdf::mirror(m.albedo);
+        case MaterialType::Dielectric:
+            return Bsdf::dielectric(m.ior);
+        case MaterialType::Conductor:
+            return Bsdf::conductor(m.eta, m.k, m.roughness);
     }
     return Bsdf::diffuse(m.albedo);
 }

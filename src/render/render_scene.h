@@ -22,7 +22,7 @@ struct SurfaceInteraction {
 };
 
 class RenderScene {
-public:
+  public:
     explicit RenderScene(SceneDescription desc);
 
     const SceneDescription& description() const { return desc_; }
@@ -30,12 +30,21 @@ public:
     // Closest surface along o + t·d; false when the ray leaves the scene.
     bool intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const;
     bool occluded(Vec3f o, Vec3f d, float tMax) const { return accel_->occluded(o, d, tMax); }
+    // Closest surfaces of up to kPacketWidth coherent rays from one origin
+    // (the camera's), traced together; found[k] is false where ray k escapes.
+    void intersectPacket(Vec3f o, const Vec3f* d, int count, SurfaceInteraction* si,
+                         bool* found) const;
+    // Every ray traced from now on is also recorded (null stops recording).
+    void setRayRecorder(RayRecorder* recorder) { accel_->setRecorder(recorder); }
+    const EmbreeAccel& accel() const { return *accel_; }
     // A ray origin nudged off the surface along the geometric normal, on the
     // side of direction w — avoids self-intersection at this scene's scale.
     Vec3f offsetOrigin(const SurfaceInteraction& si, Vec3f w) const;
     Bsdf bsdfAt(const SurfaceInteraction& si) const;
 
-private:
+  private:
+    void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
+
     SceneDescription desc_;
     std::unique_ptr<EmbreeAccel> accel_;
     std::unique_ptr<LightSet> lights_;

@@ -38,17 +38,29 @@ TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& 
         for (int x = tile.x0; x < tile.x1; ++x) {
             const Vec2i pixel{x, y};
             double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
-            for (int i = 0; i < spp; ++i) {
-                sampler.startPixelSample(pixel, i, dims::kPixel);
-                const Vec2f u = sampler.getPixel2D();
-                const Vec3f dir = camera.direction(float(x) + u.x, float(y) + u.y);
-                Vec3f L = estimateRadiance(scene, camera.eye(), dir, sampler, pixel, i, integrator,
-                                           result.counters);
-                if (!isFinite(L)) {  // never let a NaN/Inf reach the image
-                    ++result.nonFinite;
-                    L = Vec3f(0.0f);
+            // The pixel's camera rays are nearly parallel: trace them as packets.
+            for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
+                const int count = std::min(kPacketWidth, spp - i0);
+                Vec3f dirs[kPacketWidth];
+                for (int k = 0; k < count; ++k) {
+                    sampler.startPixelSample(pixel, i0 + k, dims::kPixel);
+                    const Vec2f u = sampler.getPixel2D();
+                    dirs[k] = camera.direction(float(x) + u.x, float(y) + u.y);
                 }
-                for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+                SurfaceInteraction first[kPacketWidth];
+                bool found[kPacketWidth];
+                scene.intersectPacket(camera.eye(), dirs, count, first, found);
+                result.counters.rays += uint64_t(count);
+                result.counters.dimensions += 2 * uint64_t(count);
+                for (int k = 0; k < count; ++k) {
+                    Vec3f L = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k],
+                                               sampler, pixel, i0 + k, integrator, result.counters);
+                    if (!isFinite(L)) {  // never let a NaN/Inf reach the image
+                        ++result.nonFinite;
+                        L = Vec3f(0.0f);
+                    }
+                    for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+                }
             }
             Vec3f mean, var;
             for (int c = 0; c < 3; ++c) {
@@ -65,7 +77,7 @@ TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& 
 }
 
 class ProgressBar {
-public:
+  public:
     ProgressBar(bool enabled, size_t total) : enabled_(enabled && isatty(2)), total_(total) {}
     void advance() {
         const size_t done = ++done_;
@@ -74,12 +86,12 @@ public:
         const int percent = int(100 * done / total_);
         if (percent == lastPercent_) return;
         lastPercent_ = percent;
-        std::fprintf(stderr, "\r[%-40s] %3d%%", std::string(size_t(percent * 40 / 100), '=').c_str(),
-                     percent);
+        std::fprintf(stderr, "\r[%-40s] %3d%%",
+                     std::string(size_t(percent * 40 / 100), '=').c_str(), percent);
         if (done == total_) std::fprintf(stderr, "\n");
     }
 
-private:
+  private:
     bool enabled_;
     size_t total_;
     std::atomic<size_t> done_{0};
@@ -108,8 +120,8 @@ void validateRenderSettings(const RenderSettings& s) {
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     validateRenderSettings(settings);
     const auto start = std::chrono::steady_clock::now();
-    const Vec2i res = settings.resolution.x > 0 ? settings.resolution
-                                                : scene.description().resolution;
+    const Vec2i res =
+        settings.resolution.x > 0 ? settings.resolution : scene.description().resolution;
     const AnySampler prototype =
         makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
     const PinholeCamera camera(scene.description().camera, res);
@@ -137,6 +149,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     for (const TileResult& r : results) {
         out.stats.rays += r.counters.rays;
         out.stats.shadowRays += r.counters.shadowRays;
+        out.stats.dimensions += r.counters.dimensions;
         out.stats.nonFinite += r.nonFinite;
     }
     out.stats.paths = uint64_t(res.x) * uint64_t(res.y) * uint64_t(settings.samplesPerPixel);

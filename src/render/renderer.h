@@ -27,6 +27,7 @@ struct RenderStats {
     uint64_t paths = 0;
     uint64_t rays = 0;        // camera + bounce rays
     uint64_t shadowRays = 0;  // next-event visibility rays
+    uint64_t dimensions = 0;  // sampler dimensions drawn (a 2D draw counts 2)
     uint64_t nonFinite = 0;   // samples that were NaN/Inf and were discarded
 };
 

@@ -10,17 +10,17 @@ namespace {
 
 void attachMesh(RTCDevice device, RTCScene scene, const Mesh& mesh) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        mesh.positions.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          mesh.positions.size()));
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
         v[3 * i] = mesh.positions[i].x;
         v[3 * i + 1] = mesh.positions[i].y;
         v[3 * i + 2] = mesh.positions[i].z;
     }
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-        mesh.triangleCount()));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangleCount()));
     std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
@@ -66,7 +66,14 @@ EmbreeAccel::~EmbreeAccel() {
     if (device_) rtcReleaseDevice(device_);
 }
 
+std::vector<RecordedRay> RayRecorder::gather() const {
+    std::vector<RecordedRay> all;
+    for (const auto& rays : perThread_) all.insert(all.end(), rays.begin(), rays.end());
+    return all;
+}
+
 bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
+    if (recorder_) recorder_->record(o, d, tMax, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -92,6 +99,7 @@ bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
 }
 
 bool EmbreeAccel::occluded(Vec3f o, Vec3f d, float tMax) const {
+    if (recorder_) recorder_->record(o, d, tMax, true);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray;
@@ -106,6 +114,48 @@ bool EmbreeAccel::occluded(Vec3f o, Vec3f d, float tMax) const {
     rtcOccluded1(scene_, &context, &ray);
     // Embree sets tfar to −inf when the ray is blocked.
     return ray.tfar < 0;
+}
+
+void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hits,
+                                  bool* found) const {
+    if (count == 1) {
+        found[0] = intersect(o, d[0], std::numeric_limits<float>::infinity(), &hits[0]);
+        return;
+    }
+    alignas(32) int valid[kPacketWidth];
+    alignas(32) RTCRayHit8 rh;
+    for (int k = 0; k < kPacketWidth; ++k) {
+        const bool active = k < count;
+        valid[k] = active ? -1 : 0;
+        const Vec3f dir = active ? d[k] : Vec3f(0, 0, 1);
+        if (active && recorder_)
+            recorder_->record(o, dir, std::numeric_limits<float>::infinity(), false);
+        rh.ray.org_x[k] = o.x, rh.ray.org_y[k] = o.y, rh.ray.org_z[k] = o.z;
+        rh.ray.dir_x[k] = dir.x, rh.ray.dir_y[k] = dir.y, rh.ray.dir_z[k] = dir.z;
+        rh.ray.tnear[k] = 0;
+        rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        rh.ray.time[k] = 0;
+        rh.ray.mask[k] = 0xFFFFFFFFu;
+        rh.ray.id[k] = unsigned(k);
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect8(valid, scene_, &context, &rh);
+    for (int k = 0; k < count; ++k) {
+        found[k] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        if (!found[k]) continue;
+        RayHit& hit = hits[k];
+        hit.t = rh.ray.tfar[k];
+        hit.geomId = rh.hit.geomID[k];
+        hit.primId = rh.hit.primID[k];
+        hit.u = rh.hit.u[k];
+        hit.v = rh.hit.v[k];
+        hit.ng = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
+    }
 }
 
 }  // namespace pathlab

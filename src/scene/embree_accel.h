@@ -1,9 +1,13 @@
 // Ray queries through Embree 3: one RTCScene holding every mesh of a scene as
 // triangle geometry (geometry ID = mesh index) and all spheres as one
 // sphere-point geometry (geometry ID = mesh count, primitive ID = sphere index).
+//
+// Queries can be recorded (RayRecorder) so a frame's exact rays can be replayed
+// against Embree alone: the limit the renderer's ray throughput is judged by.
 #pragma once
 
 #include <embree3/rtcore.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <vector>
 
@@ -20,8 +24,31 @@ struct RayHit {
     Vec3f ng;            // Embree's unnormalised geometric normal (used for spheres)
 };
 
+// A ray as the renderer asked for it: closest hit, or any hit (shadow ray).
+struct RecordedRay {
+    Vec3f o, d;
+    float tMax;
+    bool shadow;
+};
+
+// Collects every query made while attached to an accelerator, per thread
+// without locks; gather() concatenates them once rendering is over.
+class RayRecorder {
+  public:
+    void record(Vec3f o, Vec3f d, float tMax, bool shadow) {
+        perThread_.local().push_back({o, d, tMax, shadow});
+    }
+    std::vector<RecordedRay> gather() const;
+
+  private:
+    tbb::enumerable_thread_specific<std::vector<RecordedRay>> perThread_;
+};
+
+// Width of the packets used for coherent rays (camera rays of one pixel).
+constexpr int kPacketWidth = 8;
+
 class EmbreeAccel {
-public:
+  public:
     explicit EmbreeAccel(const SceneDescription& scene);
     ~EmbreeAccel();
     EmbreeAccel(const EmbreeAccel&) = delete;
@@ -31,16 +58,24 @@ public:
     bool intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const;
     // Any hit along o + t·d for t in (0, tMax).
     bool occluded(Vec3f o, Vec3f d, float tMax) const;
+    // Closest hits of up to kPacketWidth rays from one origin, traced as one
+    // Embree packet (rtcIntersect8); found[k] tells whether ray k hit.
+    void intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hits, bool* found) const;
+
+    // While set (not null), every query is also handed to the recorder.
+    void setRecorder(RayRecorder* recorder) { recorder_ = recorder; }
+    RTCScene embreeScene() const { return scene_; }
 
     unsigned sphereGeometryId() const { return sphereGeomId_; }
     Vec3f boundsMin() const { return boundsMin_; }
     Vec3f boundsMax() const { return boundsMax_; }
 
-private:
+  private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     unsigned sphereGeomId_ = RTC_INVALID_GEOMETRY_ID;
     Vec3f boundsMin_, boundsMax_;
+    RayRecorder* recorder_ = nullptr;
 };
 
 }  // namespace pathlab

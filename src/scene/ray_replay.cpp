@@ -1,0 +1,174 @@
+#include "scene/ray_replay.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+
+namespace pathlab {
+namespace {
+
+// Rays per task: large enough that scheduling costs nothing next to tracing.
+constexpr size_t kChunk = 4096;
+constexpr size_t kStreamLength = 64;
+
+void setRay(RTCRay& ray, const RecordedRay& r) {
+    ray.org_x = r.o.x, ray.org_y = r.o.y, ray.org_z = r.o.z;
+    ray.dir_x = r.d.x, ray.dir_y = r.d.y, ray.dir_z = r.d.z;
+    ray.tnear = 0;
+    ray.tfar = r.tMax;
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+}
+
+size_t traceSingle(RTCScene scene, const RecordedRay* rays, size_t n) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    size_t hits = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (rays[i].shadow) {
+            RTCRay ray;
+            setRay(ray, rays[i]);
+            rtcOccluded1(scene, &context, &ray);
+            hits += ray.tfar < 0;
+        } else {
+            RTCRayHit rh;
+            setRay(rh.ray, rays[i]);
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene, &context, &rh);
+            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+    return hits;
+}
+
+// Writes ray i of a packet (SOA layout shared by RTCRay8 and RTCRayHit8.ray).
+template <typename Ray8>
+void setLane(Ray8& ray, int k, const RecordedRay& r) {
+    ray.org_x[k] = r.o.x, ray.org_y[k] = r.o.y, ray.org_z[k] = r.o.z;
+    ray.dir_x[k] = r.d.x, ray.dir_y[k] = r.d.y, ray.dir_z[k] = r.d.z;
+    ray.tnear[k] = 0;
+    ray.tfar[k] = r.tMax;
+    ray.time[k] = 0;
+    ray.mask[k] = 0xFFFFFFFFu;
+    ray.id[k] = unsigned(k);
+    ray.flags[k] = 0;
+}
+
+size_t tracePackets(RTCScene scene, const RecordedRay* rays, size_t n) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    size_t hits = 0;
+    for (size_t i = 0; i < n;) {
+        // A packet: up to 8 consecutive rays of the same kind.
+        const bool shadow = rays[i].shadow;
+        int count = 0;
+        while (count < 8 && i + size_t(count) < n && rays[i + size_t(count)].shadow == shadow)
+            ++count;
+        alignas(32) int valid[8];
+        for (int k = 0; k < 8; ++k) valid[k] = k < count ? -1 : 0;
+        if (shadow) {
+            alignas(32) RTCRay8 ray;
+            for (int k = 0; k < count; ++k) setLane(ray, k, rays[i + size_t(k)]);
+            rtcOccluded8(valid, scene, &context, &ray);
+            for (int k = 0; k < count; ++k) hits += ray.tfar[k] < 0;
+        } else {
+            alignas(32) RTCRayHit8 rh;
+            for (int k = 0; k < count; ++k) {
+                setLane(rh.ray, k, rays[i + size_t(k)]);
+                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect8(valid, scene, &context, &rh);
+            for (int k = 0; k < count; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        }
+        i += size_t(count);
+    }
+    return hits;
+}
+
+size_t traceStreams(RTCScene scene, const RecordedRay* rays, size_t n) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    RTCRayHit hitRays[kStreamLength];
+    RTCRay shadowRays[kStreamLength];
+    size_t hits = 0;
+    for (size_t i = 0; i < n;) {
+        const bool shadow = rays[i].shadow;
+        unsigned count = 0;
+        while (count < kStreamLength && i + count < n && rays[i + count].shadow == shadow) {
+            if (shadow) {
+                setRay(shadowRays[count], rays[i + count]);
+            } else {
+                setRay(hitRays[count].ray, rays[i + count]);
+                hitRays[count].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                hitRays[count].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            }
+            ++count;
+        }
+        if (shadow) {
+            rtcOccluded1M(scene, &context, shadowRays, count, sizeof(RTCRay));
+            for (unsigned k = 0; k < count; ++k) hits += shadowRays[k].tfar < 0;
+        } else {
+            rtcIntersect1M(scene, &context, hitRays, count, sizeof(RTCRayHit));
+            for (unsigned k = 0; k < count; ++k)
+                hits += hitRays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+        i += count;
+    }
+    return hits;
+}
+
+}  // namespace
+
+std::string replayModeName(ReplayMode mode) {
+    switch (mode) {
+        case ReplayMode::Single:
+            return "single";
+        case ReplayMode::Packet8:
+            return "packet8";
+        case ReplayMode::Stream:
+            return "stream";
+    }
+    return "single";
+}
+
+ReplayResult replayRays(const EmbreeAccel& accel, const std::vector<RecordedRay>& rays,
+                        ReplayMode mode, int threads) {
+    std::optional<tbb::global_control> limit;
+    if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    const RTCScene scene = accel.embreeScene();
+    tbb::enumerable_thread_specific<size_t> hits(0);
+    const size_t chunks = (rays.size() + kChunk - 1) / kChunk;
+    const auto start = std::chrono::steady_clock::now();
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        const size_t begin = c * kChunk, n = std::min(kChunk, rays.size() - begin);
+        const RecordedRay* first = rays.data() + begin;
+        switch (mode) {
+            case ReplayMode::Single:
+                hits.local() += traceSingle(scene, first, n);
+                break;
+            case ReplayMode::Packet8:
+                hits.local() += tracePackets(scene, first, n);
+                break;
+            case ReplayMode::Stream:
+                hits.local() += traceStreams(scene, first, n);
+                break;
+        }
+    });
+    ReplayResult result;
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.rays = rays.size();
+    for (size_t h : hits) result.hits += h;
+    return result;
+}
+
+}  // namespace pathlab

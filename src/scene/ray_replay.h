@@ -1,0 +1,31 @@
+// Raw Embree throughput on a recorded frame's rays: the limit a renderer built
+// on Embree can approach. The same rays are traced with nothing around them —
+// one at a time (rtcIntersect1/rtcOccluded1), in packets of 8 (rtcIntersect8/
+// rtcOccluded8) and as streams (rtcIntersect1M/rtcOccluded1M) — split into
+// chunks over the requested threads.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/embree_accel.h"
+
+namespace pathlab {
+
+enum class ReplayMode { Single, Packet8, Stream };
+
+std::string replayModeName(ReplayMode mode);
+
+struct ReplayResult {
+    double seconds = 0;
+    size_t rays = 0;
+    size_t hits = 0;  // closest-hit rays that hit plus shadow rays that were blocked
+    double raysPerSecond() const { return seconds > 0 ? double(rays) / seconds : 0; }
+};
+
+// Traces every ray once; `threads` 0 means all cores. Consecutive rays of the
+// same kind form the packets and streams, as the renderer produced them.
+ReplayResult replayRays(const EmbreeAccel& accel, const std::vector<RecordedRay>& rays,
+                        ReplayMode mode, int threads);
+
+}  // namespace pathlab
