@@ -95,7 +95,12 @@ class HaltonSamplerT {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        haltonIndex_ = mapping_.index(p, index);
+        // Inverting the image mapping once per pixel sample is enough: a path
+        // restarts here at every vertex with the same sample.
+        if (p.x != pixel_.x || p.y != pixel_.y || index != index_) {
+            pixel_ = p, index_ = index;
+            haltonIndex_ = mapping_.index(p, index);
+        }
         dimension_ = std::max(2, dim);
     }
     float get1D() { return sampleDimension(dimension_++); }
@@ -120,6 +125,8 @@ class HaltonSamplerT {
     HaltonImageMapping mapping_;
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
     const int* primes_;
+    Vec2i pixel_{-1, -1};
+    int index_ = -1;
     uint64_t haltonIndex_ = 0;
     int dimension_ = 0;
 };

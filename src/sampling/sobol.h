@@ -62,8 +62,13 @@ class GlobalSobolSamplerT {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        pixel_ = p;
-        sobolIndex_ = mapping_->index(matrices_, p, uint64_t(index));
+        // A path restarts at every vertex with the same pixel sample: inverting
+        // the image mapping once per sample is enough.
+        if (p.x != pixel_.x || p.y != pixel_.y || index != index_) {
+            pixel_ = p;
+            index_ = index;
+            sobolIndex_ = mapping_->index(matrices_, p, uint64_t(index));
+        }
         dimension_ = std::max(2, dim);
     }
     float get1D() { return sampleDimension(dimension_++); }
@@ -95,7 +100,8 @@ class GlobalSobolSamplerT {
     uint64_t seed_;
     const uint32_t* matrices_;
     std::shared_ptr<const SobolImageMapping> mapping_;
-    Vec2i pixel_;
+    Vec2i pixel_{-1, -1};
+    int index_ = -1;
     uint64_t sobolIndex_ = 0;
     int dimension_ = 0;
 };

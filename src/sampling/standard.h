@@ -25,6 +25,14 @@ class StandardSampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
+        // The same pixel sample a little further on (the next path vertex):
+        // step from where the engine is instead of re-seeding.
+        if (p.x == pixel_.x && p.y == pixel_.y && index == index_ && dim >= position_) {
+            engine_.discard(static_cast<unsigned long long>(dim - position_));
+            position_ = dim;
+            return;
+        }
+        pixel_ = p, index_ = index, position_ = dim;
         // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly.
         const uint64_t h = hashValues(p.x, p.y, index, seed_);
         engine_.seed(static_cast<uint32_t>(1 + h % 2147483646u));
@@ -33,6 +41,7 @@ class StandardSampler {
     float get1D() {
         // The presentation clamps every value to [0, 1 − ε]; generate_canonical
         // can round up to exactly 1 for floats.
+        ++position_;
         const float v = distribution_(engine_);
         return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
     }
@@ -45,6 +54,9 @@ class StandardSampler {
   private:
     int spp_;
     uint64_t seed_;
+    Vec2i pixel_{-1, -1};
+    int index_ = -1;
+    int position_ = 0;  // engine steps since the sample's seeding
     MinimalStandardEngine engine_;
     std::uniform_real_distribution<float> distribution_{0.0f, 1.0f};
 };

@@ -10,8 +10,8 @@
 #pragma once
 
 #include "core/hash.h"
-#include "core/rng.h"
 #include "sampling/lowdiscrepancy.h"
+#include "sampling/pcg_cursor.h"
 #include "sampling/sampler.h"
 
 namespace pathlab {
@@ -32,19 +32,18 @@ class StratifiedSampler {
         pixel_ = p;
         index_ = static_cast<uint32_t>(index % spp_);
         dimension_ = dim;
-        rng_.setSequence(hashValues(p.x, p.y, seed_, 0x5354u), 0);
-        rng_.advance(int64_t(index) * 65536 + dim);
+        cursor_.seek(hashValues(p.x, p.y, seed_, 0x5354u), index, dim);
     }
     float get1D() {
         const uint32_t stratum = permutationElement(index_, spp_, strataHash());
         ++dimension_;
-        return clampSample((stratum + rng_.nextFloat()) / float(spp_));
+        return clampSample((stratum + cursor_.nextFloat()) / float(spp_));
     }
     Vec2f get2D() {
         const uint32_t stratum = permutationElement(index_, spp_, strataHash());
         dimension_ += 2;
         const int x = int(stratum) % xStrata_, y = int(stratum) / xStrata_;
-        const float dx = rng_.nextFloat(), dy = rng_.nextFloat();
+        const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
         return {clampSample((x + dx) / float(xStrata_)), clampSample((y + dy) / float(yStrata_))};
     }
     Vec2f getPixel2D() { return get2D(); }
@@ -62,7 +61,7 @@ class StratifiedSampler {
     Vec2i pixel_;
     uint32_t index_ = 0;
     int dimension_ = 0;
-    Pcg32 rng_;
+    PcgSampleCursor cursor_;
 };
 
 }  // namespace pathlab
