@@ -8,7 +8,7 @@ ifneq ($(wildcard $(SHARED_SCENES)/wolf/wolf.pmd),)
 export PATHLAB_ASSETS ?= $(SHARED_SCENES)
 endif
 
-.PHONY: setup build test demo bench fuzz format clean
+.PHONY: setup build test demo bench fuzz sanitize format clean
 
 setup:
 	@scripts/setup.sh
@@ -31,6 +31,47 @@ bench: build
 	@PATHLAB_SETUP_EXTRAS=bench scripts/setup.sh
 	@$(BUILD)/pathlab bench
 	@$(BUILD)/pathlab_bench
+
+# Fuzzing: libFuzzer targets (fuzz/) built with clang, ASan and UBSan, each run
+# for FUZZ_SECONDS; fails when any target finds a crash.
+FUZZ_SECONDS ?= 60
+FUZZ_BUILD := build/fuzz
+FUZZ_TARGETS := json_scene study_spec obj_mtl image
+
+$(FUZZ_BUILD)/build.ninja: CMakeLists.txt
+	@CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) -G Ninja \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPATHLAB_FUZZ=ON "-DPATHLAB_SANITIZE=address;undefined" >/dev/null
+
+fuzz: setup
+	@PATHLAB_SETUP_EXTRAS=fuzz scripts/setup.sh
+	@$(MAKE) --no-print-directory $(FUZZ_BUILD)/build.ninja
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# Sanitizers: the unit tests under AddressSanitizer + UBSan (all but the
+# browser test), then the renderer's determinism tests under ThreadSanitizer.
+ASAN_BUILD := build/asan
+TSAN_BUILD := build/tsan
+TSAN_TESTS := ^(Determinism\..*|RenderCli\.IdenticalBytesForOneTwoAndEightThreads)$$
+
+$(ASAN_BUILD)/build.ninja: CMakeLists.txt
+	@cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  "-DPATHLAB_SANITIZE=address;undefined" >/dev/null
+
+$(TSAN_BUILD)/build.ninja: CMakeLists.txt
+	@cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DPATHLAB_SANITIZE=thread >/dev/null
+
+sanitize: setup
+	@PATHLAB_SETUP_EXTRAS=sanitize scripts/setup.sh
+	@$(MAKE) --no-print-directory $(ASAN_BUILD)/build.ninja $(TSAN_BUILD)/build.ninja
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target pathlab pathlab_tests \
+	  $(addsuffix _replay,$(addprefix fuzz_,$(FUZZ_TARGETS)))
+	@cd $(ASAN_BUILD) && UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -E '^report_browser$$'
+	@cmake --build $(TSAN_BUILD) -j $(JOBS) --target pathlab pathlab_tests
+	@cd $(TSAN_BUILD) && TSAN_OPTIONS="halt_on_error=1 suppressions=$(abspath tests/tsan.supp)" \
+	  ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -17,6 +17,12 @@ PACKAGES=(
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
 # Optional extras for `make bench` (Embree's tutorial path tracer).
 if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *bench* ]]; then PACKAGES+=(embree-tools hyperfine); fi
+# `make fuzz`: clang with libFuzzer and its sanitizer runtimes.
+if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *fuzz* ]]; then
+  PACKAGES+=(clang-14 libclang-rt-14-dev libfuzzer-14-dev)
+fi
+# `make sanitize`: gcc's AddressSanitizer, UBSan and ThreadSanitizer runtimes.
+if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *sanitize* ]]; then PACKAGES+=(libasan8 libubsan1 libtsan2); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
