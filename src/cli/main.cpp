@@ -1,6 +1,7 @@
 // pathlab — a laboratory for sampling strategies in path tracing.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -16,6 +17,18 @@ int main(int argc, char** argv) {
     pathlab::cli::addStudyCommand(app);
     pathlab::cli::addBenchCommand(app);
     pathlab::cli::addReportCommand(app);
+    // CLI11 would say "A subcommand is required" for a misspelt command.
+    std::string names;
+    bool known = false;
+    for (const CLI::App* cmd : app.get_subcommands({})) {
+        names += (names.empty() ? "" : ", ") + cmd->get_name();
+        known = known || (argc > 1 && cmd->get_name() == argv[1]);
+    }
+    if (argc > 1 && argv[1][0] != '-' && !known) {
+        std::fprintf(stderr, "pathlab: error: unknown command '%s' (commands: %s)\n", argv[1],
+                     names.c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "sampling/registry.h"
@@ -41,27 +42,6 @@ std::string extensionOf(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });
     return ext;
-}
-
-// Writes text atomically: a temporary beside the target, renamed into place.
-void writeTextFile(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw InputError("cannot write '" + path + "'");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw InputError("cannot write '" + path + "': " + ec.message());
-    }
 }
 
 // Highest frequency of the spectrum: about twice the blue-noise peak at √N,
@@ -186,7 +166,7 @@ void runPoints(const PointsOptions& o) {
             std::snprintf(line, sizeof line, "%d,%.9g,%.9g\n", k, pts[k].x, pts[k].y);
             text += line;
         }
-        writeTextFile(o.output, text);
+        writeFileAtomic(o.output, text);
         return;
     }
     if (ext == ".png") checkWritable(o.output);
@@ -196,7 +176,7 @@ void runPoints(const PointsOptions& o) {
                                   std::to_string(j) + ", pixel " + std::to_string(px) + "," +
                                   std::to_string(py) + ", " + std::to_string(o.count) +
                                   " points, seed " + std::to_string(o.seed);
-        writeTextFile(o.output, svgDrawing(pts, spectrum, title));
+        writeFileAtomic(o.output, svgDrawing(pts, spectrum, title));
     } else {
         writeImage(o.output, pngDrawing(pts, spectrum));
     }

@@ -12,28 +12,51 @@
 namespace pathlab::cli {
 namespace {
 
+// The renderer's limits (validateRenderSettings), checked here on the wide values.
+constexpr int64_t kMaxSamplesPerPixel = int64_t(1) << 24;
+constexpr int64_t kMaxDepth = 1024;
+
 struct RenderOptions {
     std::string scene, output, size;
     RenderSettings settings;
+    // Read wide, so an absurd count is refused by range, not by a conversion.
+    int64_t spp = 16, maxDepth = 8;
     bool noRoulette = false;
 };
 
+// A decimal count, saturated: "99999999999999999999" is simply very large.
+int64_t parseCount(const std::string& digits) {
+    int64_t v = 0;
+    for (char c : digits) v = v > (INT64_MAX - 9) / 10 ? INT64_MAX : v * 10 + (c - '0');
+    return v;
+}
+
 Vec2i parseSize(const std::string& text) {
-    static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");
+    static const std::regex pattern(R"((\d+)x(\d+))");
     std::smatch m;
     if (!std::regex_match(text, m, pattern))
         throw InputError("--size must look like WIDTHxHEIGHT (e.g. 512x512), got '" + text + "'");
-    return {std::stoi(m[1]), std::stoi(m[2])};
+    const int64_t w = parseCount(m[1]), h = parseCount(m[2]);
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+        throw InputError("--size must be between 1x1 and " + std::to_string(kMaxImageSide) + "x" +
+                         std::to_string(kMaxImageSide) + ", got '" + text + "'");
+    return {int(w), int(h)};
+}
+
+// Out-of-range values are refused here, before they are narrowed.
+int checkedInt(int64_t v, int64_t lo, int64_t hi, const std::string& what) {
+    if (v < lo || v > hi)
+        throw InputError(what + " must be between " + std::to_string(lo) + " and " +
+                         std::to_string(hi) + ", got " + std::to_string(v));
+    return int(v);
 }
 
 void runRender(RenderOptions& o) {
     RenderSettings& s = o.settings;
     s.russianRoulette = !o.noRoulette;
-    if (!o.size.empty()) {
-        s.resolution = parseSize(o.size);
-        if (s.resolution.x == 0 || s.resolution.y == 0)
-            throw InputError("--size must be at least 1x1, got '" + o.size + "'");
-    }
+    s.samplesPerPixel = checkedInt(o.spp, 1, kMaxSamplesPerPixel, "--spp");
+    s.maxDepth = checkedInt(o.maxDepth, 0, kMaxDepth, "--max-depth");
+    if (!o.size.empty()) s.resolution = parseSize(o.size);
     validateRenderSettings(s);
     checkWritable(o.output);  // fail before rendering, not after
     s.progress = true;
@@ -42,14 +65,12 @@ void runRender(RenderOptions& o) {
     writeImage(o.output, out.image);
     const RenderStats& st = out.stats;
     const double rays = double(st.rays + st.shadowRays);
-    std::fprintf(stderr,
-                 "rendered %s (%dx%d, %d spp, %s) in %.3f s: %.3g paths/s, %.3g rays/s%s\n",
+    std::fprintf(stderr, "rendered %s (%dx%d, %d spp, %s) in %.3f s: %.3g paths/s, %.3g rays/s%s\n",
                  o.output.c_str(), out.image.width, out.image.height, s.samplesPerPixel,
                  s.sampler.c_str(), st.seconds, double(st.paths) / st.seconds, rays / st.seconds,
-                 st.nonFinite ? (", " + std::to_string(st.nonFinite) +
-                                 " NaN/Inf samples discarded")
-                                    .c_str()
-                              : "");
+                 st.nonFinite
+                     ? (", " + std::to_string(st.nonFinite) + " NaN/Inf samples discarded").c_str()
+                     : "");
 }
 
 }  // namespace
@@ -61,13 +82,11 @@ void addRenderCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--sampler", opts->settings.sampler, "Sampler name (see `pathlab samplers`)")
         ->capture_default_str();
-    cmd->add_option("--spp", opts->settings.samplesPerPixel, "Samples per pixel")
-        ->capture_default_str();
+    cmd->add_option("--spp", opts->spp, "Samples per pixel")->capture_default_str();
     cmd->add_option("--seed", opts->settings.seed, "Seed of the sampler's randomisation")
         ->capture_default_str();
     cmd->add_option("--size", opts->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-    cmd->add_option("--max-depth", opts->settings.maxDepth,
-                    "Maximum path depth (1 = direct lighting only)")
+    cmd->add_option("--max-depth", opts->maxDepth, "Maximum path depth (1 = direct lighting only)")
         ->capture_default_str();
     cmd->add_flag("--no-russian-roulette", opts->noRoulette, "Disable Russian roulette");
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")

@@ -1,13 +1,14 @@
 #include "core/image.h"
 
-#include <png.h>
-#include <unistd.h>
-
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+#include <png.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace pathlab {
@@ -29,20 +31,13 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-// A temporary name beside the target, unique per process, renamed into place.
-std::string temporaryPathFor(const std::string& path) {
-    std::filesystem::path p(path);
-    return (p.parent_path() / ("." + p.filename().string() + ".tmp." + std::to_string(getpid())))
-        .string();
-}
-
-void commitTemporary(const std::string& tmp, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw InputError("cannot write '" + path + "': " + ec.message());
-    }
+// Refuses sizes no image of pathlab's can have before anything is allocated
+// for them (a corrupt or hostile header must not exhaust memory).
+void checkImageSize(const std::string& path, int64_t w, int64_t h) {
+    if (w > kMaxImageSide || h > kMaxImageSide)
+        throw InputError("image '" + path + "' is " + std::to_string(w) + "x" + std::to_string(h) +
+                         ", larger than the " + std::to_string(kMaxImageSide) + "x" +
+                         std::to_string(kMaxImageSide) + " pathlab reads");
 }
 
 Image readExr(const std::string& path) {
@@ -51,10 +46,11 @@ Image readExr(const std::string& path) {
         const Imath::Box2i dw = file.header().dataWindow();
         const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
         if (w <= 0 || h <= 0) throw InputError("image '" + path + "' is empty");
+        checkImageSize(path, w, h);
         Image img(w, h);
         const Imf::ChannelList& channels = file.header().channels();
-        const bool hasRgb = channels.findChannel("R") && channels.findChannel("G") &&
-                            channels.findChannel("B");
+        const bool hasRgb =
+            channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
         const bool hasY = channels.findChannel("Y") != nullptr;
         if (!hasRgb && !hasY) throw InputError("image '" + path + "' has no R,G,B or Y channels");
         Imf::FrameBuffer fb;
@@ -80,19 +76,26 @@ Image readExr(const std::string& path) {
     }
 }
 
-void writeExr(const std::string& path, const Image& img) {
+// The encoders build the whole file in memory; writeImage then writes it in
+// one go, so a failure is reported with its cause (errno) for the target.
+std::string encodeExr(const Image& img) {
     Imf::Header header(img.width, img.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    Imf::OutputFile file(path.c_str(), header);
-    Imf::FrameBuffer fb;
-    char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
-    const size_t xs = 3 * sizeof(float), ys = xs * img.width;
-    fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
-    fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
-    fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
-    file.setFrameBuffer(fb);
-    file.writePixels(img.height);
+    for (const char* name : {"R", "G", "B"})
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    Imf::StdOSStream stream;
+    {
+        Imf::OutputFile file(stream, header);
+        Imf::FrameBuffer fb;
+        char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
+        const size_t xs = 3 * sizeof(float), ys = xs * img.width;
+        fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+        fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+        file.setFrameBuffer(fb);
+        file.writePixels(img.height);
+    }  // the file's destructor completes it (the line offset table)
+    return stream.str();
 }
 
 Image readPng(const std::string& path) {
@@ -102,6 +105,10 @@ Image readPng(const std::string& path) {
         throw InputError("cannot read PNG '" + path + "': " + png.message);
     // 16-bit files are decoded by libpng to linear 16-bit; 8-bit ones keep their
     // sRGB code values, decoded here with the exact sRGB transfer function.
+    if (png.width > uint32_t(kMaxImageSide) || png.height > uint32_t(kMaxImageSide)) {
+        png_image_free(&png);
+        checkImageSize(path, int64_t(png.width), int64_t(png.height));
+    }
     const bool sixteen = (png.format & PNG_FORMAT_FLAG_LINEAR) != 0;
     png.format = sixteen ? PNG_FORMAT_LINEAR_RGB : PNG_FORMAT_RGB;
     Image img(static_cast<int>(png.width), static_cast<int>(png.height));
@@ -122,7 +129,7 @@ Image readPng(const std::string& path) {
     return img;
 }
 
-void writePng(const std::string& path, const Image& img, float exposure) {
+std::string encodePng(const Image& img, float exposure) {
     const float scale = std::exp2(exposure);
     std::vector<unsigned char> buf(img.rgb.size());
     for (size_t i = 0; i < buf.size(); ++i) {
@@ -135,8 +142,14 @@ void writePng(const std::string& path, const Image& img, float exposure) {
     png.width = static_cast<png_uint_32>(img.width);
     png.height = static_cast<png_uint_32>(img.height);
     png.format = PNG_FORMAT_RGB;
-    if (!png_image_write_to_file(&png, path.c_str(), 0, buf.data(), 0, nullptr))
-        throw InputError("cannot write PNG '" + path + "': " + png.message);
+    png_alloc_size_t size = 0;
+    if (!png_image_write_get_memory_size(png, size, 0, buf.data(), 0, nullptr))
+        throw std::runtime_error(std::string("PNG encoder: ") + png.message);
+    std::string bytes(size, '\0');
+    if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, buf.data(), 0, nullptr))
+        throw std::runtime_error(std::string("PNG encoder: ") + png.message);
+    bytes.resize(size);
+    return bytes;
 }
 
 // PFM (Portable Float Map): "PF\n w h\n scale\n" then bottom-to-top rows of
@@ -148,11 +161,16 @@ Image readPfm(const std::string& path) {
     int w = 0, h = 0;
     double scale = 0;
     in >> magic >> w >> h >> scale;
-    if (!in || (magic != "PF" && magic != "Pf") || w <= 0 || h <= 0 || w > (1 << 16) ||
-        h > (1 << 16) || scale == 0)
+    if (!in || (magic != "PF" && magic != "Pf") || w <= 0 || h <= 0 || scale == 0)
         throw InputError("'" + path + "' is not a valid PFM file (bad header)");
+    checkImageSize(path, w, h);
     in.get();  // the single whitespace byte after the header
     const int channels = magic == "PF" ? 3 : 1;
+    // Before allocating: a few bytes claiming a large image are refused here.
+    std::error_code ec;
+    const auto fileSize = std::filesystem::file_size(path, ec);
+    if (ec || fileSize < uint64_t(in.tellg()) + uint64_t(w) * h * channels * sizeof(float))
+        throw InputError("'" + path + "' is truncated");
     std::vector<float> data(size_t(w) * h * channels);
     in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
     if (in.gcount() != std::streamsize(data.size() * sizeof(float)))
@@ -173,14 +191,13 @@ Image readPfm(const std::string& path) {
     return img;
 }
 
-void writePfm(const std::string& path, const Image& img) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) throw InputError("cannot write '" + path + "'");
-    out << "PF\n" << img.width << " " << img.height << "\n-1\n";
+std::string encodePfm(const Image& img) {
+    std::string bytes =
+        "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1\n";
     for (int y = img.height - 1; y >= 0; --y)
-        out.write(reinterpret_cast<const char*>(&img.rgb[size_t(y) * img.width * 3]),
-                  std::streamsize(img.width * 3 * sizeof(float)));
-    if (!out.flush()) throw InputError("cannot write '" + path + "': write failed");
+        bytes.append(reinterpret_cast<const char*>(&img.rgb[size_t(y) * img.width * 3]),
+                     size_t(img.width) * 3 * sizeof(float));
+    return bytes;
 }
 
 }  // namespace
@@ -208,9 +225,12 @@ Image readImage(const std::string& path) {
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError("image '" + path + "' does not exist or is not a file");
     switch (format) {
-        case ImageFormat::Exr: return readExr(path);
-        case ImageFormat::Png: return readPng(path);
-        case ImageFormat::Pfm: return readPfm(path);
+        case ImageFormat::Exr:
+            return readExr(path);
+        case ImageFormat::Png:
+            return readPng(path);
+        case ImageFormat::Pfm:
+            return readPfm(path);
     }
     throw InputError("unsupported image '" + path + "'");
 }
@@ -221,29 +241,31 @@ void checkWritable(const std::string& path) {
     std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec))
-        throw InputError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist");
+        throw InputError("cannot write '" + path + "': " +
+                         (std::filesystem::exists(dir, ec)
+                              ? "'" + dir.string() + "' is not a directory"
+                              : "directory '" + dir.string() + "' does not exist"));
     if (access(dir.c_str(), W_OK) != 0)
-        throw InputError("cannot write '" + path + "': no permission to write in '" +
-                         dir.string() + "'");
+        throw InputError("cannot write '" + path + "': no permission to write in '" + dir.string() +
+                         "'");
 }
 
 void writeImage(const std::string& path, const Image& image, float exposure) {
     const ImageFormat format = imageFormatFromPath(path);
     checkWritable(path);
-    const std::string tmp = temporaryPathFor(path);
-    try {
-        switch (format) {
-            case ImageFormat::Exr: writeExr(tmp, image); break;
-            case ImageFormat::Png: writePng(tmp, image, exposure); break;
-            case ImageFormat::Pfm: writePfm(tmp, image); break;
-        }
-    } catch (const std::exception& e) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw InputError("cannot write '" + path + "': " + e.what());
+    std::string bytes;
+    switch (format) {
+        case ImageFormat::Exr:
+            bytes = encodeExr(image);
+            break;
+        case ImageFormat::Png:
+            bytes = encodePng(image, exposure);
+            break;
+        case ImageFormat::Pfm:
+            bytes = encodePfm(image);
+            break;
     }
-    commitTemporary(tmp, path);
+    writeFileAtomic(path, bytes);
 }
 
 }  // namespace pathlab

@@ -28,6 +28,9 @@ struct Image {
     }
 };
 
+// The largest width and height pathlab renders or reads.
+constexpr int kMaxImageSide = 16384;
+
 enum class ImageFormat { Exr, Png, Pfm };
 
 // The format implied by a file name's extension (case-insensitive); throws
@@ -35,12 +38,15 @@ enum class ImageFormat { Exr, Png, Pfm };
 ImageFormat imageFormatFromPath(const std::string& path);
 
 // Reads EXR (R,G,B or Y channels as float), PNG (sRGB decoded to linear) or PFM.
-// Throws InputError naming the file and the problem.
+// Throws InputError naming the file and the problem, also for an image wider
+// or taller than kMaxImageSide (checked before allocating).
 Image readImage(const std::string& path);
 
 // Writes the format given by the extension. PNG is sRGB-encoded, clamped to
-// [0,1] after multiplying by 2^exposure. Throws InputError when the target
-// cannot be written; never leaves a partial file behind.
+// [0,1] after multiplying by 2^exposure. The file is encoded in memory and
+// written with writeFileAtomic: it is complete and on disk once its name
+// exists. Throws InputError naming the target and the cause (e.g. "no space
+// left on device writing 'x.exr'"); never leaves a partial file behind.
 void writeImage(const std::string& path, const Image& image, float exposure = 0.0f);
 
 // Fails early (InputError) when `path` cannot be created: missing directory or

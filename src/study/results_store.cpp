@@ -2,9 +2,11 @@
 
 #include <sqlite3.h>
 
+#include <cerrno>
 #include <stdexcept>
 #include <tuple>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace pathlab {
@@ -27,12 +29,34 @@ constexpr const char* kCellColumns =
     "scene, sampler, spp, seed, seconds, mse, rmse, relmse, flip, flip_median, psnr, "
     "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at";
 
+// Throws for SQLite's last error on `db` (the database file `path`): a full
+// disk or a file that cannot be written is the user's to fix (InputError,
+// one line naming the file), anything else is an internal failure.
+[[noreturn]] void throwSqliteError(sqlite3* db, const std::string& path) {
+    const int code = sqlite3_extended_errcode(db);
+    const std::string what = sqlite3_errmsg(db);
+    switch (code & 0xff) {
+        case SQLITE_FULL:
+            throw InputError(writeErrorMessage(path, ENOSPC));
+        case SQLITE_IOERR:
+            if (sqlite3_system_errno(db) != 0)
+                throw InputError(writeErrorMessage(path, sqlite3_system_errno(db)));
+            throw InputError("cannot write '" + path + "': " + what);
+        case SQLITE_READONLY:
+        case SQLITE_CANTOPEN:
+        case SQLITE_PERM:
+            throw InputError("cannot write '" + path + "': " + what);
+        default:
+            throw std::runtime_error("SQLite: " + what);
+    }
+}
+
 // A prepared statement that finalises itself; binds by 1-based position.
 class Statement {
   public:
-    Statement(sqlite3* db, const std::string& sql) : db_(db) {
+    Statement(sqlite3* db, const std::string& sql, const std::string& path) : db_(db), path_(path) {
         if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
-            throw std::runtime_error(std::string("SQLite: ") + sqlite3_errmsg(db));
+            throwSqliteError(db, path);
     }
     ~Statement() { sqlite3_finalize(stmt_); }
     Statement(const Statement&) = delete;
@@ -54,7 +78,7 @@ class Statement {
         const int rc = sqlite3_step(stmt_);
         if (rc == SQLITE_ROW) return true;
         if (rc == SQLITE_DONE) return false;
-        throw std::runtime_error(std::string("SQLite: ") + sqlite3_errmsg(db_));
+        throwSqliteError(db_, path_);
     }
     std::string text(int i) const {
         const auto* p = sqlite3_column_text(stmt_, i);
@@ -69,6 +93,7 @@ class Statement {
 
   private:
     sqlite3* db_;
+    const std::string& path_;
     sqlite3_stmt* stmt_ = nullptr;
 };
 
@@ -116,6 +141,9 @@ ResultsStore::ResultsStore(const std::string& path, bool readOnly) : path_(path)
         exec("PRAGMA journal_mode=WAL");
         exec("PRAGMA synchronous=FULL");
         exec(kSchema);
+    } catch (const InputError&) {
+        sqlite3_close(db_);
+        throw;  // a full disk, a file that cannot be written
     } catch (const std::exception& e) {
         sqlite3_close(db_);
         throw InputError("'" + path + "' is not a usable study database: " + e.what());
@@ -127,17 +155,15 @@ ResultsStore::~ResultsStore() {
 }
 
 void ResultsStore::exec(const char* sql) const {
-    char* error = nullptr;
-    if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
-        const std::string why = error ? error : "unknown error";
-        sqlite3_free(error);
-        throw std::runtime_error("SQLite: " + why);
-    }
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+        throwSqliteError(db_, path_);
 }
 
 void ResultsStore::putCell(const CellRow& r) {
-    Statement s(db_, std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
-                         ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
+    Statement s(db_,
+                std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
+                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                path_);
     s.bind(1, r.key.scene);
     s.bind(2, r.key.sampler);
     s.bind(3, int64_t(r.key.spp));
@@ -162,7 +188,7 @@ void ResultsStore::putCell(const CellRow& r) {
 }
 
 std::vector<CellRow> ResultsStore::queryCells(const std::string& where, const CellKey* key) const {
-    Statement s(db_, std::string("SELECT ") + kCellColumns + " FROM cells " + where);
+    Statement s(db_, std::string("SELECT ") + kCellColumns + " FROM cells " + where, path_);
     if (key) {
         s.bind(1, key->scene);
         s.bind(2, key->sampler);
@@ -185,7 +211,7 @@ std::vector<CellRow> ResultsStore::cells() const {
 }
 
 int64_t ResultsStore::cellCount() const {
-    Statement s(db_, "SELECT COUNT(*) FROM cells");
+    Statement s(db_, "SELECT COUNT(*) FROM cells", path_);
     s.step();
     return s.integer(0);
 }
@@ -193,7 +219,8 @@ int64_t ResultsStore::cellCount() const {
 void ResultsStore::putReference(const ReferenceRow& r) {
     Statement s(db_,
                 "INSERT OR REPLACE INTO \"references\" (scene, sampler, spp, seconds, cache_key, "
-                "noise_mse, noise_relmse, exposure, image) VALUES (?,?,?,?,?,?,?,?,?)");
+                "noise_mse, noise_relmse, exposure, image) VALUES (?,?,?,?,?,?,?,?,?)",
+                path_);
     s.bind(1, r.scene);
     s.bind(2, r.sampler);
     s.bind(3, int64_t(r.spp));
@@ -209,7 +236,8 @@ void ResultsStore::putReference(const ReferenceRow& r) {
 std::vector<ReferenceRow> ResultsStore::references() const {
     Statement s(db_,
                 "SELECT scene, sampler, spp, seconds, cache_key, noise_mse, noise_relmse, "
-                "exposure, image FROM \"references\" ORDER BY rowid");
+                "exposure, image FROM \"references\" ORDER BY rowid",
+                path_);
     std::vector<ReferenceRow> out;
     while (s.step())
         out.push_back({s.text(0), s.text(1), int(s.integer(2)), s.real(3), s.text(4), s.real(5),
@@ -221,20 +249,21 @@ void ResultsStore::setStudyValues(const std::map<std::string, std::string>& valu
     exec("BEGIN IMMEDIATE");
     try {
         for (const auto& [k, v] : values) {
-            Statement s(db_, "INSERT OR REPLACE INTO study (key, value) VALUES (?, ?)");
+            Statement s(db_, "INSERT OR REPLACE INTO study (key, value) VALUES (?, ?)", path_);
             s.bind(1, k);
             s.bind(2, v);
             s.step();
         }
         exec("COMMIT");
     } catch (...) {
-        exec("ROLLBACK");
+        // SQLite may have rolled back already (a full disk does that).
+        if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
         throw;
     }
 }
 
 std::map<std::string, std::string> ResultsStore::studyValues() const {
-    Statement s(db_, "SELECT key, value FROM study");
+    Statement s(db_, "SELECT key, value FROM study", path_);
     std::map<std::string, std::string> out;
     while (s.step()) out[s.text(0)] = s.text(1);
     return out;

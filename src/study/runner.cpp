@@ -5,6 +5,7 @@
 #include <chrono>
 #include <memory>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "metrics/error_map.h"
 #include "render/renderer.h"
@@ -72,9 +73,21 @@ bool cellComplete(const fs::path& dir, const ResultsStore& store, const CellKey&
     return key.seed != 0 || fs::is_regular_file(dir / (cellStem(key) + ".png"));
 }
 
+// Empty, or holding only directories and temporaries: what a run killed
+// before it wrote spec.toml leaves, which is no study yet.
 bool directoryIsEmpty(const fs::path& dir) {
     std::error_code ec;
-    return !fs::exists(dir, ec) || fs::is_empty(dir, ec);
+    if (!fs::exists(dir, ec)) return true;
+    for (auto it = fs::recursive_directory_iterator(dir, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (!it->is_directory(ec) && !isTemporaryName(it->path().filename().string())) return false;
+    return !ec;
+}
+
+void createDirectories(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(writeErrorMessage(dir.string(), ec.value()));
 }
 
 void prepareDirectory(const StudySpec& spec, const StudyOptions& o) {
@@ -93,10 +106,9 @@ void prepareDirectory(const StudySpec& spec, const StudyOptions& o) {
             throw InputError("'" + dir.string() + "' holds a study whose '" + diff +
                              "' differs from this spec: choose another directory");
     }
-    std::error_code ec;
-    fs::create_directories(dir / "references", ec);
-    if (ec)
-        throw InputError("cannot create '" + (dir / "references").string() + "': " + ec.message());
+    createDirectories(dir / "references");
+    // What a killed run was writing: never complete, so never used.
+    removeStaleTemporaries(dir);
     writeTextFileAtomic(dir / "spec.toml", studySpecToToml(spec));
 }
 
@@ -204,7 +216,7 @@ void renderCell(const SceneJob& job, const Reference& ref, const CellKey& key, S
     s.threads = ctx.options.threads;
     const RenderOutput out = render(*job.render, s);
     const CellMetrics m = measureCell(ref.image, out.image, ref.exposure, ctx.spec);
-    fs::create_directories((ctx.options.dir / cellStem(key)).parent_path());
+    createDirectories((ctx.options.dir / cellStem(key)).parent_path());
     writeCellImages(ctx.options.dir, key, out.image, ref, m);
     CellRow row{key,
                 out.stats.seconds,

@@ -264,6 +264,9 @@ StudySpec parseStudySpec(const std::string& text, const std::string& sourceName,
 }
 
 StudySpec loadStudySpec(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError("study spec '" + path + "' does not exist or is not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot read study spec '" + path + "'");
     std::stringstream text;

@@ -1,0 +1,222 @@
+// Bad input, command by command — the table in the README's "Bad input"
+// section. Each case must give exit code 2 and one line on stderr naming the
+// problem, create no output, and leave an output already there unchanged.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+
+#include "cli_runner.h"
+#include "core/image.h"
+
+namespace pathlab {
+namespace {
+namespace fs = std::filesystem;
+
+struct BadInput {
+    const char* input;    // what is wrong, as in the README's table
+    const char* args;     // {dir} is the scratch directory
+    const char* output;   // what the command would write ("" when nothing)
+    const char* message;  // the one line after "pathlab: error: ", {dir} as above
+};
+
+// The README's table, row for row.
+const BadInput kCases[] = {
+    {"missing scene file", "render --scene {dir}/missing.json -o {dir}/out.png", "out.png",
+     "unknown scene '{dir}/missing.json': neither a built-in scene (cornell-box, wolf) nor an "
+     "existing file"},
+    {"malformed JSON scene", "render --scene {dir}/broken.json -o {dir}/out.png", "out.png",
+     "{dir}/broken.json: invalid JSON: parse error at line 1, column 29: syntax error while "
+     "parsing value - unexpected end of input; expected '[', '{', or a literal"},
+    {"OBJ with a bad index", "render --scene {dir}/bad-index.obj -o {dir}/out.png", "out.png",
+     "OBJ file '{dir}/bad-index.obj': face 0 of '' has an index out of range (3 vertices)"},
+    {"OBJ with a NaN vertex", "render --scene {dir}/nan.obj -o {dir}/out.png", "out.png",
+     "OBJ file '{dir}/nan.obj' line 2: vertex coordinate 'nan' is not a finite number"},
+    {"zero-area light", "render --scene {dir}/flat-lamp.obj -o {dir}/out.png", "out.png",
+     "{dir}/flat-lamp.obj: light mesh 'flat-lamp/lamp' has a zero-area triangle 1"},
+    {"unknown scene", "render --scene nowhere -o {dir}/out.png", "out.png",
+     "unknown scene 'nowhere': neither a built-in scene (cornell-box, wolf) nor an existing file"},
+    {"unknown sampler", "render --scene cornell-box --sampler nonsense -o {dir}/out.png", "out.png",
+     "SAMPLER"},
+    {"zero spp", "render --scene cornell-box --spp 0 -o {dir}/out.png", "out.png",
+     "--spp must be between 1 and 16777216, got 0"},
+    {"negative spp", "render --scene cornell-box --spp -5 -o {dir}/out.png", "out.png",
+     "--spp must be between 1 and 16777216, got -5"},
+    {"absurd spp", "render --scene cornell-box --spp 1000000000000 -o {dir}/out.png", "out.png",
+     "--spp must be between 1 and 16777216, got 1000000000000"},
+    {"zero size", "render --scene cornell-box --size 0x0 -o {dir}/out.png", "out.png",
+     "--size must be between 1x1 and 16384x16384, got '0x0'"},
+    {"absurd size", "render --scene cornell-box --size 1000000x1000000 -o {dir}/out.png", "out.png",
+     "--size must be between 1x1 and 16384x16384, got '1000000x1000000'"},
+    {"size that is no size", "render --scene cornell-box --size huge -o {dir}/out.png", "out.png",
+     "--size must look like WIDTHxHEIGHT (e.g. 512x512), got 'huge'"},
+    {"negative depth", "render --scene cornell-box --max-depth -3 -o {dir}/out.png", "out.png",
+     "--max-depth must be between 0 and 1024, got -3"},
+    {"absurd depth", "render --scene cornell-box --max-depth 100000000000 -o {dir}/out.png",
+     "out.png", "--max-depth must be between 0 and 1024, got 100000000000"},
+    {"negative threads", "render --scene cornell-box --threads -1 -o {dir}/out.png", "out.png",
+     "threads must be between 0 (all cores) and 4096, got -1"},
+    {"output directory missing", "render --scene cornell-box -o {dir}/no/such/out.png", "",
+     "cannot write '{dir}/no/such/out.png': directory '{dir}/no/such' does not exist"},
+    {"output under a file", "render --scene cornell-box -o {dir}/a.exr/out.png", "",
+     "cannot write '{dir}/a.exr/out.png': '{dir}/a.exr' is not a directory"},
+    {"unknown output type", "render --scene cornell-box -o {dir}/out.tiff", "out.tiff",
+     "unsupported image type '.tiff' for '{dir}/out.tiff' (expected .exr, .png or .pfm)"},
+    {"unknown option", "render --scene cornell-box --frobnicate -o {dir}/out.png", "out.png",
+     "The following argument was not expected: --frobnicate"},
+    {"unknown command", "frobnicate {dir}/a.exr", "",
+     "unknown command 'frobnicate' (commands: render, compare, samplers, points, study, bench, "
+     "report)"},
+    {"images of different sizes", "compare {dir}/a.exr {dir}/small.exr --error-map {dir}/map.png",
+     "map.png", "SIZES"},
+    {"NaN pixels", "compare {dir}/a.exr {dir}/nan.exr --error-map {dir}/map.png", "map.png", "NAN"},
+    {"missing image", "compare {dir}/a.exr {dir}/missing.exr --error-map {dir}/map.png", "map.png",
+     "image '{dir}/missing.exr' does not exist or is not a file"},
+    {"not an image", "compare {dir}/a.exr {dir}/junk.exr --error-map {dir}/map.png", "map.png",
+     "JUNK"},
+    {"image header claiming an absurd size",
+     "compare {dir}/a.exr {dir}/huge.pfm --error-map {dir}/map.png", "map.png",
+     "image '{dir}/huge.pfm' is 100000x100000, larger than the 16384x16384 pathlab reads"},
+    {"truncated image", "compare {dir}/a.exr {dir}/truncated.pfm --error-map {dir}/map.png",
+     "map.png", "'{dir}/truncated.pfm' is truncated"},
+    {"unknown metric", "compare {dir}/a.exr {dir}/a.exr --metric ssim", "",
+     "--metric: ssim not in {mse,rmse,relmse,psnr,flip,all}"},
+    {"missing study spec", "study {dir}/missing.toml -o {dir}/study", "study",
+     "study spec '{dir}/missing.toml' does not exist or is not a file"},
+    {"malformed TOML spec", "study {dir}/broken.toml -o {dir}/study", "study",
+     "{dir}/broken.toml:4:1: not valid TOML: Error while parsing array: expected comma or "
+     "closing ']', saw 's'"},
+    {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
+     "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
+     "samplers, spp, seeds, resolution, max_depth, russian_roulette, metrics, "
+     "time_budget_seconds, reference)"},
+    {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
+     "SPEC-SAMPLER"},
+    {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",
+     "{dir}/absurd-spp.toml:3: key 'spp[0]' must be between 1 and 16777216, got 1000000000000"},
+    {"absurd size in spec", "study {dir}/absurd-size.toml -o {dir}/study", "study",
+     "{dir}/absurd-size.toml:4: key 'resolution[0]' must be between 1 and 16384, got 1000000"},
+    {"unknown preset", "study --preset nope -o {dir}/study", "study",
+     "unknown preset 'nope' (known: seed, quick, full)"},
+    {"study directory in use", "study --preset quick -o {dir}/used", "",
+     "'{dir}/used' is not empty: add --resume to continue the study in it, or choose another "
+     "directory"},
+    {"another study's directory", "study {dir}/ok.toml -o {dir}/other --resume", "",
+     "'{dir}/other' holds a study whose 'max_depth' differs from this spec: choose another "
+     "directory"},
+    {"no study to report", "report {dir}/used", "",
+     "'{dir}/used' is not a study directory (no "
+     "results.sqlite)"},
+};
+
+std::string substituted(std::string text, const std::string& dir) {
+    for (size_t at; (at = text.find("{dir}")) != std::string::npos;) text.replace(at, 5, dir);
+    return text;
+}
+
+// Names and contents of every file under `dir`.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        out[entry.path().string()] =
+            entry.is_regular_file() ? testing::slurpFile(entry.path()) : "<directory>";
+    return out;
+}
+
+class BadInputTable : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir = testing::scratchDirectory("bad-input");
+        const auto put = [&](const std::string& name, const std::string& text) {
+            std::ofstream(dir / name, std::ios::binary) << text;
+        };
+        put("broken.json", "{ \"camera\": { \"eye\": [0, 0, ");
+        put("bad-index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+        put("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+        put("flat-lamp.mtl", "newmtl lamp\nKe 1 1 1\n");
+        put("flat-lamp.obj",
+            "mtllib flat-lamp.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 4\n"
+            "f 1 2 3\n");
+        writeImage((dir / "a.exr").string(), Image(8, 8));
+        writeImage((dir / "small.exr").string(), Image(8, 6));
+        Image nan(8, 8);
+        nan.rgb[5] = std::numeric_limits<float>::quiet_NaN();
+        writeImage((dir / "nan.exr").string(), nan);
+        put("junk.exr", "this is not an EXR file");
+        put("huge.pfm", "PF\n100000 100000\n-1\nabcd");
+        put("truncated.pfm", "PF\n100 100\n-1\nabcd");
+        const std::string spec = "scenes = [\"cornell-box\"]\nsamplers = [\"halton\"]\n";
+        put("broken.toml", spec + "spp = [1, 2\nseeds = 2\n");
+        put("unknown-key.toml", spec + "spp = [1]\nseedz = 3\n");
+        put("unknown-sampler.toml",
+            "scenes = [\"cornell-box\"]\nsamplers = [\"halton\", \"nope\"]\nspp = [1]\n");
+        put("absurd-spp.toml", spec + "spp = [1000000000000]\n");
+        put("absurd-size.toml", spec + "spp = [1]\nresolution = [1000000, 1000000]\n");
+        put("ok.toml", spec + "spp = [1]\n");
+        fs::create_directory(dir / "other");
+        put("other/spec.toml", spec + "spp = [1]\nmax_depth = 3\n");
+        fs::create_directory(dir / "used");
+        put("used/notes.txt", "someone's work\n");
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    fs::path dir;
+};
+
+TEST_F(BadInputTable, OneLineExitCodeTwoNothingWrittenNothingLost) {
+    const std::string d = dir.string();
+    // The messages the placeholders stand for: they depend on a library's
+    // wording or list every sampler, so only their start is pinned down.
+    const std::map<std::string, std::string> prefixes = {
+        {"SAMPLER", "unknown sampler 'nonsense' (known: "},
+        {"SIZES", ""},
+        {"NAN", ""},
+        {"JUNK", "cannot read EXR '" + d + "/junk.exr': "},
+        {"SPEC-SAMPLER", d + "/unknown-sampler.toml:2: key 'samplers[1]' names an unknown "
+                             "sampler 'nope' (known: "},
+    };
+    const std::map<std::string, std::string> mentions = {
+        {"SAMPLER", "halton"}, {"SIZES", "8x6"},         {"NAN", "NaN"},
+        {"JUNK", "junk.exr"},  {"SPEC-SAMPLER", "nope"},
+    };
+    for (const BadInput& c : kCases) {
+        SCOPED_TRACE(c.input);
+        const std::string args = substituted(c.args, d);
+        const std::string output = *c.output ? (dir / c.output).string() : "";
+        for (const bool existing : {false, true}) {
+            if (existing && output.empty()) continue;
+            SCOPED_TRACE(existing ? "output already there" : "no output yet");
+            if (existing) {
+                if (std::string(c.args).rfind("study", 0) == 0) {
+                    fs::create_directory(output);
+                    std::ofstream(fs::path(output) / "earlier.txt") << "earlier work\n";
+                } else {
+                    std::ofstream(output) << "an earlier output\n";
+                }
+            }
+            const auto before = snapshot(dir);
+            const auto r = testing::runPathlab(args, dir);
+            EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+            EXPECT_EQ(r.errLines(), 1) << args << "\n" << r.err;
+            const std::string line = r.err.substr(0, r.err.find('\n'));
+            if (std::getenv("PATHLAB_PRINT_BAD_INPUT") && !existing)
+                std::printf("%s\t%s\t%s\n", c.input, args.c_str(), line.c_str());
+            const std::string expected = substituted(c.message, d);
+            if (prefixes.count(expected)) {
+                EXPECT_EQ(line.rfind("pathlab: error: " + prefixes.at(expected), 0), 0u) << line;
+                EXPECT_NE(line.find(mentions.at(expected)), std::string::npos) << line;
+            } else {
+                EXPECT_EQ(line, "pathlab: error: " + expected);
+            }
+            if (!existing && !output.empty()) {
+                EXPECT_FALSE(fs::exists(output)) << output;
+            }
+            EXPECT_EQ(snapshot(dir), before) << args;  // nothing new, nothing changed
+            if (existing) fs::remove_all(output);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace pathlab
