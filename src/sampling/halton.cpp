@@ -1,5 +1,6 @@
 #include "sampling/halton.h"
 
+#include <cmath>
 #include <deque>
 #include <mutex>
 
@@ -17,6 +18,14 @@ uint64_t multiplicativeInverse(int64_t a, int64_t n) {
         r0 = r1, r1 = r2, t0 = t1, t1 = t2;
     }
     return static_cast<uint64_t>(((t0 % n) + n) % n);
+}
+
+// The float nearest below v: rounding to nearest could lift a point sitting
+// just under a b-adic stratum boundary into the next stratum.
+float floatBelow(double v) {
+    float f = static_cast<float>(v);
+    if (static_cast<double>(f) > v) f = std::nextafter(f, 0.0f);
+    return std::min(f, kOneMinusEpsilon);
 }
 
 }  // namespace
@@ -102,16 +111,19 @@ float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation 
     // bijection of the b-adic intervals at every level (unlike stopping at the
     // last non-zero digit, which would leave point 0 and short indices fixed).
     const int digits = floatDigitCount(base);
+    const BaseDivider divider{uint32_t(base)};
     const double invBase = 1.0 / base;
     double invBaseM = 1.0;
     uint64_t reversed = 0;
     for (int k = 0; k < digits; ++k) {
-        const uint64_t next = a / base;
-        reversed = reversed * base + permutation(uint32_t((a - next * base + shifts[k]) % base));
+        const uint64_t next = divider.quotient(a);
+        uint32_t digit = uint32_t(a - next * base) + shifts[k];  // both below base
+        if (digit >= uint32_t(base)) digit -= uint32_t(base);
+        reversed = reversed * base + permutation(digit);
         invBaseM *= invBase;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
+    return floatBelow(static_cast<double>(reversed) * invBaseM);
 }
 
 float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
@@ -120,18 +132,23 @@ float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permuta
     // node of Owen's tree the point lies in): points sharing the first k digits
     // share the permutation, so b-adic strata map to b-adic strata.
     const int digits = floatDigitCount(base);
+    const BaseDivider divider{uint32_t(base)};
     const double invBase = 1.0 / base;
     double invBaseM = 1.0;
     uint64_t reversed = 0;
     for (int k = 0; k < digits; ++k) {
-        const uint64_t next = a / base;
-        const uint64_t digit = a - next * base;
+        const uint64_t next = divider.quotient(a);
         const uint64_t node = mixBits(dimensionHash ^ (reversed * 0x9e3779b97f4a7c15ULL + k));
-        reversed = reversed * base + permutation(uint32_t((digit + node % base) % base));
+        // The node's shift in [0, base): the hash's top 32 bits scaled by base
+        // (Lemire's multiply-shift range reduction, no division).
+        const auto shift = uint32_t(((node >> 32) * uint64_t(base)) >> 32);
+        uint32_t digit = uint32_t(a - next * base) + shift;
+        if (digit >= uint32_t(base)) digit -= uint32_t(base);
+        reversed = reversed * base + permutation(digit);
         invBaseM *= invBase;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
+    return floatBelow(static_cast<double>(reversed) * invBaseM);
 }
 
 }  // namespace pathlab

@@ -28,12 +28,13 @@ float radicalInverse(int base, uint64_t a) {
     // Accumulate the mirrored digits as an integer and scale once at the end,
     // stopping before the integer could overflow (digits past that point are
     // far below float precision).
+    const BaseDivider divider{uint32_t(base)};
     const uint64_t limit = ~uint64_t(0) / base - base;
     const double invBase = 1.0 / base;
     double invBaseM = 1.0;
     uint64_t reversed = 0;
     while (a != 0 && reversed < limit) {
-        const uint64_t next = a / base;
+        const uint64_t next = divider.quotient(a);
         reversed = reversed * base + (a - next * base);
         invBaseM *= invBase;
         a = next;
@@ -42,14 +43,20 @@ float radicalInverse(int base, uint64_t a) {
 }
 
 int floatDigitCount(int base) {
-    // Digits whose weight b^-k still reaches the float mantissa (2^-24).
-    int digits = 0;
-    double weight = 1.0;
-    while (weight * (base - 1) >= 0x1p-25) {
-        weight /= base;
-        ++digits;
-    }
-    return digits;
+    // Digits whose weight b^-k still reaches the float mantissa (2^-24),
+    // tabulated for the prime bases' range.
+    auto count = [](int b) {
+        int digits = 0;
+        for (double weight = 1.0; weight * (b - 1) >= 0x1p-25; weight /= b) ++digits;
+        return digits;
+    };
+    static const std::vector<uint8_t> table = [&] {
+        const size_t largestPrime = size_t(primeTable()[kPrimeTableSize - 1]);
+        std::vector<uint8_t> t(largestPrime + 1);
+        for (size_t b = 2; b < t.size(); ++b) t[b] = uint8_t(count(int(b)));
+        return t;
+    }();
+    return size_t(base) < table.size() ? table[size_t(base)] : count(base);
 }
 
 const uint32_t* sobolMatrices() {

@@ -68,6 +68,20 @@ float radicalInverse(int base, uint64_t a);
 // are lost to rounding, so scramblers stop there.
 int floatDigitCount(int base);
 
+// Division by a small base as a multiply, the hot operation of every radical
+// inverse. For a < 2^32 the high half of a·⌈2^64/b⌉ is exactly ⌊a/b⌋: the
+// rounding error a·(⌈2^64/b⌉ − 2^64/b)/2^64 < 2^-32 never reaches the 1/b gap
+// between a/b's fractional part and the next integer (Granlund & Montgomery
+// 1994, "Division by Invariant Integers using Multiplication").
+struct BaseDivider {
+    uint64_t base, reciprocal;
+    explicit BaseDivider(uint32_t b) : base(b), reciprocal(~uint64_t(0) / b + 1) {}
+    uint64_t quotient(uint64_t a) const {
+        if (a >> 32) return a / base;
+        return static_cast<uint64_t>((static_cast<unsigned __int128>(a) * reciprocal) >> 64);
+    }
+};
+
 // The index whose first `digits` base-b digits, mirrored, give `inverse`:
 // Φ_b^{-1} restricted to `digits` digits (used for Halton's image-plane mapping).
 constexpr uint64_t inverseRadicalInverse(uint64_t inverse, int base, int digits) {
