@@ -56,6 +56,16 @@ TEST(StudySpec, CanonicalTomlRoundTrips) {
     EXPECT_EQ(firstSpecDifference(presetSpec("quick"), changed), "reference.spp");
 }
 
+// Names may hold any character TOML can escape; the canonical TOML must read
+// back (a raw DEL, which JSON-style escaping leaves alone, is not valid TOML).
+TEST(StudySpec, CanonicalTomlEscapesControlCharacters) {
+    StudySpec s = parse(kValid);
+    s.name = std::string("tab\t del\x7f nul") + '\0' + "\x1f \"quoted\" \\ é";
+    const StudySpec again = parse(studySpecToToml(s));
+    EXPECT_EQ(again.name, s.name);
+    EXPECT_EQ(firstSpecDifference(s, again), "");
+}
+
 TEST(StudySpec, ErrorsNameTheKeyAndTheLine) {
     struct Case {
         std::string text, expected;

@@ -227,8 +227,13 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
     return s;
 }
 
+// A TOML basic string: JSON's escapes are TOML's, but TOML also forbids a raw
+// DEL (U+007F), which JSON leaves as it is.
 std::string quoted(const std::string& s) {
-    return nlohmann::json(s).dump();
+    std::string out = nlohmann::json(s).dump();
+    for (size_t p = out.find('\x7f'); p != std::string::npos; p = out.find('\x7f', p))
+        out.replace(p, 1, "\\u007F");
+    return out;
 }
 
 template <typename T, typename F>
