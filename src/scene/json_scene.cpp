@@ -62,7 +62,10 @@ class Node {
             for (std::string_view a : allowed) ok |= key == a;
             if (ok) continue;
             std::string list;
-            for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+            for (std::string_view a : allowed) {
+                if (!list.empty()) list += ", ";
+                list += a;
+            }
             fail("unknown key '" + key + "' (expected one of: " + list + ")");
         }
     }
