@@ -29,7 +29,8 @@ demo: build
 
 bench: build
 	@PATHLAB_SETUP_EXTRAS=bench scripts/setup.sh
-	@$(BUILD)/pathlab bench
+	@$(BUILD)/pathlab bench --samplers
+	@bench/vs_embree.sh 5 $(BUILD)/pathlab
 	@$(BUILD)/pathlab_bench
 
 # Fuzzing: libFuzzer targets (fuzz/) built with clang, ASan and UBSan, each run
