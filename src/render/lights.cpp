@@ -1,7 +1,9 @@
 #include "render/lights.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 
 #include "render/sampling_routines.h"
 
@@ -26,12 +28,158 @@ AreaLight makeLight(Vec3f p0, Vec3f e1, Vec3f e2, bool parallelogram, const Mesh
     l.radiance = mesh.emission;
     l.twoSided = mesh.twoSided;
     l.parallelogram = parallelogram;
+    const float l1 = length(e1), l2 = length(e2);
+    l.rectangle = parallelogram && std::abs(dot(e1, e2)) <= 1e-5f * l1 * l2;
+    if (l.rectangle) {
+        l.xAxis = e1 / l1;
+        l.yAxis = cross(l.n, l.xAxis);  // = e2/|e2| up to the tolerance above
+        l.width = l1;
+        l.height = dot(e2, l.yAxis);
+    }
     return l;
+}
+
+// Below this solid angle (steradians) a rectangle is sampled by area: the
+// spherical construction loses precision, and the two densities nearly agree
+// anyway (pbrt-v4 uses the same bound for bilinear patches).
+constexpr double kMinSphericalSolidAngle = 1e-4;
+// Receivers closer to a rectangle's plane than this fraction of its longer
+// edge sample it by area too: the construction divides by that distance.
+constexpr double kMinRelativePlaneDistance = 1e-4;
+
+// Solid angle of the rectangle [x0,x1]×[y0,y1] in the plane at distance h > 0,
+// seen from the point above the origin. A rectangle [0,x]×[0,y] with a corner at
+// the foot point subtends atan(xy / (h·r)), r = √(x²+y²+h²) the corner's distance
+// (e.g. Mathar 2014, "Solid Angle of a Rectangular Plate"); that is odd in x and
+// in y, so any rectangle is the signed sum over its four corners. The four
+// arctangents are added as the argument of a product of complex numbers
+// 1 ± i·a — one atan2 — with no cancellation against 2π as in the angle-sum
+// formula Σγ − 2π. rXY is the distance to corner (xX, yY).
+double rectangleSolidAngle(double x0, double x1, double y0, double y1, double h, double r00,
+                           double r10, double r01, double r11) {
+    const double a00 = x0 * y0 / (h * r00), a10 = x1 * y0 / (h * r10);
+    const double a01 = x0 * y1 / (h * r01), a11 = x1 * y1 / (h * r11);
+    // (1 + i·a11)(1 − i·a01): the strip at y1; (1 + i·a00)(1 − i·a10): at y0.
+    const double pr = 1 + a11 * a01, pi = a11 - a01;
+    const double qr = 1 + a00 * a10, qi = a00 - a10;
+    // (Single precision suffices here: atan2's error is relative to its result.)
+    const double raw = std::atan2(float(pr * qi + pi * qr), float(pr * qr - pi * qi));
+    // Ω < 2π always, and Ω < π when the foot point is outside the rectangle
+    // (the rectangle then lies in a half-plane): that fixes the branch. With the
+    // foot inside, every factor has a non-negative imaginary part, so a tiny Ω
+    // cannot round to a negative argument.
+    if (x0 <= 0 && x1 >= 0 && y0 <= 0 && y1 >= 0) return raw < 0 ? raw + 2 * M_PI : raw;
+    return raw < -M_PI / 2 ? raw + 2 * M_PI : std::max(raw, 0.0);
+}
+
+// A rectangular light seen from a reference point, in the local frame of
+// Ureña, Fajardo & King 2013, "An Area-Preserving Parametrization for
+// Spherical Rectangles", §3: the reference point at the origin, the rectangle
+// [x0,x1]×[y0,y1] in the plane z = z0 = −h < 0 (the frame's z is flipped when
+// the point lies on the other side), edges along the light's xAxis and yAxis.
+struct SphericalRectangle {
+    double x0, x1, y0, y1, h;
+    double signedDistance;      // (p0 − ref)·n: world z of the plane seen from ref
+    double r00, r10, r01, r11;  // distances to the corners
+    double solidAngle;
+
+    SphericalRectangle(const AreaLight& l, Vec3f ref) {
+        const Vec3f d = l.p0 - ref;
+        x0 = dot(d, l.xAxis);
+        y0 = dot(d, l.yAxis);
+        signedDistance = dot(d, l.n);
+        h = std::abs(signedDistance);
+        x1 = x0 + l.width;
+        y1 = y0 + l.height;
+        const double hh = h * h;
+        r00 = std::sqrt(x0 * x0 + y0 * y0 + hh), r10 = std::sqrt(x1 * x1 + y0 * y0 + hh);
+        r01 = std::sqrt(x0 * x0 + y1 * y1 + hh), r11 = std::sqrt(x1 * x1 + y1 * y1 + hh);
+        solidAngle = h > 0 ? rectangleSolidAngle(x0, x1, y0, y1, h, r00, r10, r01, r11) : 0;
+    }
+
+    bool usable(const AreaLight& l) const {
+        return solidAngle >= kMinSphericalSolidAngle &&
+               h >= kMinRelativePlaneDistance * std::max(l.width, l.height);
+    }
+
+    // The paper's Algorithm 1: u.x picks the abscissa xu at which the strip
+    // [x0,xu]×[y0,y1] subtends u.x·Ω; u.y then moves linearly in
+    // hv = y/√(xu²+z0²+y²), the sine of the elevation, which is uniform in solid
+    // angle along the segment x = xu. Returns (xu, yv) in the rectangle's plane.
+    std::pair<double, double> sample(Vec2f u) const {
+        const double hh = h * h;
+        const double rx0 = std::sqrt(hh + x0 * x0);
+        const double ry0 = std::sqrt(hh + y0 * y0), ry1 = std::sqrt(hh + y1 * y1);
+        // The planes through the origin and the edges v00v10 and v11v01 have
+        // normals n0 = (0, z0, −y0)/ry0 and n2 = (0, −z0, y1)/ry1 (§3); b0, b1
+        // are their z components.
+        const double b0 = -y0 / ry0, b1 = y1 / ry1;
+        // The internal angles γ2, γ3 at corners v01 and v00 are acos(−n2·n3) and
+        // acos(−n3·n0), n3 = (z0, 0, −x0)/rx0. Their cosines and sines in closed
+        // form (1 − cos² simplifies to h²r²/(…), no cancellation) give γ2 + γ3
+        // without inverse trigonometry.
+        const double c2 = x0 * y1 / (ry1 * rx0), s2 = h * r01 / (ry1 * rx0);
+        const double c3 = -x0 * y0 / (rx0 * ry0), s3 = h * r00 / (rx0 * ry0);
+        const double c23 = c2 * c3 - s2 * s3, s23 = s2 * c3 + c2 * s3;
+        // au = u.x·Ω + k with k = 2π − γ2 − γ3 (paper eq. 8); the 2π drops out
+        // of its sine and cosine.
+        const float uOmega = float(double(u.x) * solidAngle);
+        const double cw = std::cos(uOmega), sw = std::sin(uOmega);
+        const double cosAu = cw * c23 + sw * s23, sinAu = sw * c23 - cw * s23;
+        // The cosine cu of the angle between the x axis and the plane through
+        // the origin and x = xu (eqs. 9–10), from which xu follows.
+        const double fu = (cosAu * b0 - b1) / sinAu;
+        double cu = std::copysign(1.0, fu) / std::sqrt(fu * fu + b0 * b0);
+        cu = std::clamp(cu, -1 + 1e-12, 1 - 1e-12);
+        const double xu = std::clamp(cu * h / std::sqrt(1 - cu * cu), x0, x1);
+        // The segment x = xu: uniform in hv between its endpoints (eqs. 11–12).
+        const double dd2 = xu * xu + hh;
+        const double h0 = y0 / std::sqrt(dd2 + y0 * y0), h1 = y1 / std::sqrt(dd2 + y1 * y1);
+        const double hv = h0 + double(u.y) * (h1 - h0), hv2 = hv * hv;
+        const double yv =
+            hv2 < 1 - 1e-12 ? std::clamp(hv * std::sqrt(dd2 / (1 - hv2)), y0, y1) : y1;
+        return {xu, yv};
+    }
+
+    // The inverse: the u with sample(u) = (xu, yv), from the same two facts.
+    Vec2f invert(double xu, double yv) const {
+        xu = std::clamp(xu, x0, x1);
+        yv = std::clamp(yv, y0, y1);
+        const double hh = h * h;
+        const double ru0 = std::sqrt(xu * xu + y0 * y0 + hh);
+        const double ru1 = std::sqrt(xu * xu + y1 * y1 + hh);
+        const double strip = rectangleSolidAngle(x0, xu, y0, y1, h, r00, ru0, r01, ru1);
+        const double dd2 = xu * xu + hh;
+        const double h0 = y0 / ru0, h1 = y1 / ru1;
+        const double hv = yv / std::sqrt(dd2 + yv * yv);
+        const double ux = strip / solidAngle;
+        const double uy = h1 > h0 ? (hv - h0) / (h1 - h0) : 0.5;
+        return {float(std::clamp(ux, 0.0, 1.0)), float(std::clamp(uy, 0.0, 1.0))};
+    }
+
+    // pbrt-v4's warp for the cosine at the receiver: the receiver's |cosθ|
+    // towards the corners (floored at 0.01, so no part of the light gets zero
+    // density), in sampleBilinear's corner order (0,0), (1,0), (0,1), (1,1) of
+    // the (u.x along xAxis, u.y along yAxis) square.
+    void cornerCosines(const AreaLight& l, Vec3f ns, float (&w)[4]) const {
+        const double nx = dot(ns, l.xAxis), ny = dot(ns, l.yAxis);
+        const double nz = double(dot(ns, l.n)) * signedDistance;
+        w[0] = float(std::max(0.01, std::abs(nx * x0 + ny * y0 + nz) / r00));
+        w[1] = float(std::max(0.01, std::abs(nx * x1 + ny * y0 + nz) / r10));
+        w[2] = float(std::max(0.01, std::abs(nx * x0 + ny * y1 + nz) / r01));
+        w[3] = float(std::max(0.01, std::abs(nx * x1 + ny * y1 + nz) / r11));
+    }
+};
+
+bool hasNormal(Vec3f ns) {
+    return ns.x != 0 || ns.y != 0 || ns.z != 0;
 }
 
 }  // namespace
 
-float AreaLight::power() const { return luminance(radiance) * area * kPi * (twoSided ? 2 : 1); }
+float AreaLight::power() const {
+    return luminance(radiance) * area * kPi * (twoSided ? 2 : 1);
+}
 
 Vec3f AreaLight::samplePoint(Vec2f u) const {
     if (parallelogram) return p0 + e1 * u.x + e2 * u.y;
@@ -40,12 +188,62 @@ Vec3f AreaLight::samplePoint(Vec2f u) const {
     return p0 + e1 * b.y + e2 * (1 - b.x - b.y);
 }
 
+std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
+                                                                Vec2f u) const {
+    if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
+    if (rectangle) {
+        const SphericalRectangle rect(*this, ref);
+        if (rect.usable(*this)) {
+            float pdf = float(1 / rect.solidAngle);
+            if (hasNormal(ns)) {
+                float w[4];
+                rect.cornerCosines(*this, ns, w);
+                u = sampleBilinear(u, w);
+                pdf *= bilinearPdf(u, w);
+            }
+            const auto [xu, yv] = rect.sample(u);
+            // (xu, yv) are relative to the reference point's foot; p0 sits at (x0, y0).
+            const Vec3f p = p0 + xAxis * float(xu - rect.x0) + yAxis * float(yv - rect.y0);
+            return DirectionSample{p, pdf};
+        }
+    }
+    // Uniform by area: density 1/A, per solid angle dist² / (A |cosθ_light|).
+    const Vec3f p = samplePoint(u);
+    const Vec3f d = p - ref;
+    const float dist2 = dot(d, d);
+    const float cosLight = std::abs(dot(n, d)) / std::sqrt(dist2);
+    if (!(dist2 > 0) || cosLight <= 0) return std::nullopt;
+    return DirectionSample{p, dist2 / (area * cosLight)};
+}
+
+float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
+    if (!twoSided && dot(ref - p0, n) <= 0) return 0;
+    if (rectangle) {
+        const SphericalRectangle rect(*this, ref);
+        if (rect.usable(*this)) {
+            float pdf = float(1 / rect.solidAngle);
+            if (hasNormal(ns)) {
+                float w[4];
+                rect.cornerCosines(*this, ns, w);
+                const Vec3f q = p - p0;
+                pdf *=
+                    bilinearPdf(rect.invert(rect.x0 + dot(q, xAxis), rect.y0 + dot(q, yAxis)), w);
+            }
+            return pdf;
+        }
+    }
+    const Vec3f d = p - ref;
+    const float dist2 = dot(d, d);
+    const float cosLight = std::abs(dot(n, d)) / std::sqrt(dist2);
+    if (!(cosLight > 0)) return 0;
+    return dist2 / (area * cosLight);
+}
+
 Vec3f AreaLight::emitted(Vec3f w) const {
     return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f);
 }
 
-LightSet::LightSet(const SceneDescription& scene, Vec3f focus)
-    : environment_(scene.environment) {
+LightSet::LightSet(const SceneDescription& scene, Vec3f focus) : environment_(scene.environment) {
     triangleLight_.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -108,13 +306,15 @@ int LightSet::lightOfTriangle(unsigned mesh, unsigned triangle) const {
     return triangleLight_[mesh][triangle];
 }
 
-float LightSet::pmf(size_t i) const { return cdf_[i] - (i == 0 ? 0.0f : cdf_[i - 1]); }
+float LightSet::pmf(size_t i) const {
+    return cdf_[i] - (i == 0 ? 0.0f : cdf_[i - 1]);
+}
 
-std::optional<LightSample> LightSet::sample(Vec3f ref, float uChoice, Vec2f u) const {
+std::optional<LightSample> LightSet::sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const {
     if (cdf_.empty()) return std::nullopt;
-    const size_t i = std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uChoice) -
-                                     cdf_.begin()),
-                              cdf_.size() - 1);
+    const size_t i =
+        std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uChoice) - cdf_.begin()),
+                 cdf_.size() - 1);
     const float choicePmf = pmf(i);
     if (choicePmf <= 0) return std::nullopt;
     if (i == lights_.size()) {  // the environment: uniform directions
@@ -122,26 +322,20 @@ std::optional<LightSample> LightSet::sample(Vec3f ref, float uChoice, Vec2f u) c
                            environment_, choicePmf * uniformSpherePdf()};
     }
     const AreaLight& light = lights_[i];
-    const Vec3f p = light.samplePoint(u);
-    const Vec3f d = p - ref;
+    const auto s = light.sampleFrom(ref, ns, u);
+    if (!s) return std::nullopt;
+    const Vec3f d = s->p - ref;
     const float dist2 = dot(d, d);
-    if (dist2 <= 0) return std::nullopt;
+    if (!(dist2 > 0) || !(s->pdf > 0) || std::isinf(s->pdf)) return std::nullopt;
     const float dist = std::sqrt(dist2);
     const Vec3f wi = d / dist;
-    const float cosLight = std::abs(dot(light.n, wi));
     const Vec3f Le = light.emitted(-wi);
-    if (cosLight <= 0 || isBlack(Le)) return std::nullopt;
-    // Area density 1/A converted to solid angle: dist² / (A cosθ_light).
-    return LightSample{wi, dist, Le, choicePmf * dist2 / (light.area * cosLight)};
+    if (isBlack(Le)) return std::nullopt;
+    return LightSample{wi, dist, Le, choicePmf * s->pdf};
 }
 
-float LightSet::pdfAreaLight(int light, Vec3f ref, Vec3f p) const {
-    const AreaLight& l = lights_[size_t(light)];
-    const Vec3f d = p - ref;
-    const float dist2 = dot(d, d);
-    const float cosLight = std::abs(dot(l.n, d)) / std::sqrt(dist2);
-    if (cosLight <= 0) return 0;
-    return pmf(size_t(light)) * dist2 / (l.area * cosLight);
+float LightSet::pdfAreaLight(int light, Vec3f ref, Vec3f ns, Vec3f p) const {
+    return pmf(size_t(light)) * lights_[size_t(light)].pdfFrom(ref, ns, p);
 }
 
 float LightSet::pdfEnvironment() const {

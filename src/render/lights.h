@@ -7,6 +7,14 @@
 // of radius r, which lets a wide floor hand it nearly every sample); here it
 // gets the share of the irradiance it delivers at the scene's focus point (the
 // camera's target) next to the area lights' unoccluded irradiance there.
+//
+// A point on a rectangular light is sampled by the solid angle it subtends at
+// the receiver (Ureña, Fajardo & King 2013), the 2D sample first warped by a
+// bilinear fit of the receiver's cosine at the rectangle's corners (as pbrt-v4's
+// BilinearPatch::Sample); other lights, and rectangles seen at a tiny solid
+// angle or from (nearly) their own plane, are sampled uniformly by area. Which
+// strategy is used depends only on the receiver's position, so the density
+// reported for a sample and pdfAreaLight agree exactly.
 #pragma once
 
 #include <optional>
@@ -24,9 +32,26 @@ struct AreaLight {
     Vec3f radiance;
     bool twoSided = false;
     bool parallelogram = false;
+    // A parallelogram with perpendicular edges: then xAxis = e1/|e1|, yAxis =
+    // n × xAxis, and the rectangle is p0 + [0, width]·xAxis + [0, height]·yAxis.
+    bool rectangle = false;
+    Vec3f xAxis, yAxis;
+    float width = 0, height = 0;
     float power() const;
     // A uniformly distributed point on the light for u in [0,1)².
     Vec3f samplePoint(Vec2f u) const;
+    // A point on the light for next-event estimation at `ref`, whose shading
+    // normal is `ns` (zero: unknown, no cosine warp), with its density per unit
+    // solid angle at ref. Nothing when ref sees only the back of a one-sided
+    // light or the point coincides with ref.
+    struct DirectionSample {
+        Vec3f p;
+        float pdf;
+    };
+    std::optional<DirectionSample> sampleFrom(Vec3f ref, Vec3f ns, Vec2f u) const;
+    // The solid-angle density with which sampleFrom(ref, ns, ·) produces point p
+    // (p on the light, seen from ref on its emitting side).
+    float pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const;
     // Emitted radiance towards direction w (pointing away from the light).
     Vec3f emitted(Vec3f w) const;
 };
@@ -39,7 +64,7 @@ struct LightSample {
 };
 
 class LightSet {
-public:
+  public:
     // `focus` is where the environment's share of light choices is judged.
     LightSet(const SceneDescription& scene, Vec3f focus);
 
@@ -49,14 +74,18 @@ public:
     // The light a triangle belongs to, or −1.
     int lightOfTriangle(unsigned mesh, unsigned triangle) const;
 
-    std::optional<LightSample> sample(Vec3f ref, float uChoice, Vec2f u) const;
-    // Solid-angle pdf (with choice probability) of reaching point p with normal
-    // on light `light` from ref — for MIS when a BSDF sample hits the light.
-    float pdfAreaLight(int light, Vec3f ref, Vec3f p) const;
+    // A light sample for the receiver at `ref` with shading normal `ns` (the zero
+    // vector when there is none). uChoice picks the light; it is read even when
+    // there is one light, so the dimension layout never depends on the scene.
+    std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
+    // Solid-angle pdf (with choice probability) with which sample(ref, ns, …)
+    // reaches point p of light `light` — for MIS when a BSDF sample hits the
+    // light. ref and ns must be those the light sample would have used.
+    float pdfAreaLight(int light, Vec3f ref, Vec3f ns, Vec3f p) const;
     float pdfEnvironment() const;
     Vec3f environment() const { return environment_; }
 
-private:
+  private:
     float pmf(size_t i) const;
     void buildDistribution(Vec3f focus);
     std::vector<AreaLight> lights_;

@@ -36,7 +36,7 @@ struct PathCounters {
 inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
                             const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
                             Vec2f uLight, PathCounters& counters) {
-    const auto ls = scene.lights().sample(si.p, uChoice, uLight);
+    const auto ls = scene.lights().sample(si.p, si.ns, uChoice, uLight);
     if (!ls) return Vec3f(0.0f);
     const Vec3f wi = frame.toLocal(ls->wi);
     const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
@@ -62,7 +62,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
                        SurfaceInteraction si, S& sampler, Vec2i pixel, int sampleIndex,
                        const IntegratorSettings& settings, PathCounters& counters) {
     const LightSet& lights = scene.lights();
-    Vec3f L(0.0f), beta(1.0f), prevPoint;
+    Vec3f L(0.0f), beta(1.0f), prevPoint, prevNormal;
     bool specularBounce = false;
     float prevBsdfPdf = 0;
     for (int depth = 0;; ++depth) {
@@ -82,9 +82,10 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
             const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
             if (!isBlack(Le))
                 L += beta * Le *
-                     (unweighted ? 1.0f
-                                 : powerHeuristic(prevBsdfPdf,
-                                                  lights.pdfAreaLight(si.light, prevPoint, si.p)));
+                     (unweighted
+                          ? 1.0f
+                          : powerHeuristic(prevBsdfPdf, lights.pdfAreaLight(si.light, prevPoint,
+                                                                            prevNormal, si.p)));
         }
         if (depth == settings.maxDepth) break;
 
@@ -107,6 +108,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         specularBounce = bs->specular;
         prevBsdfPdf = bs->pdf;
         prevPoint = si.p;
+        prevNormal = si.ns;
         origin = scene.offsetOrigin(si, wi);
         dir = wi;
 

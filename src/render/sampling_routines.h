@@ -29,7 +29,9 @@ inline Vec3f sampleCosineHemisphere(Vec2f u) {
     const float z = std::sqrt(std::max(0.0f, 1 - d.x * d.x - d.y * d.y));
     return {d.x, d.y, z};
 }
-inline float cosineHemispherePdf(float cosTheta) { return cosTheta * kInvPi; }
+inline float cosineHemispherePdf(float cosTheta) {
+    return cosTheta * kInvPi;
+}
 
 inline Vec3f sampleUniformSphere(Vec2f u) {
     const float z = 1 - 2 * u.x;
@@ -37,7 +39,9 @@ inline Vec3f sampleUniformSphere(Vec2f u) {
     const float phi = 2 * kPi * u.y;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
-inline constexpr float uniformSpherePdf() { return kInv4Pi; }
+inline constexpr float uniformSpherePdf() {
+    return kInv4Pi;
+}
 
 // Uniform barycentrics on a triangle (Heitz 2019, "A Low-Distortion Map Between
 // Triangle and Square"): unlike the square-root map it keeps strata compact.
@@ -52,6 +56,43 @@ inline Vec2f sampleUniformTriangle(Vec2f u) {
         b0 = u.x - b1;
     }
     return {b0, b1};
+}
+
+// The density on [0,1] proportional to the linear function (1−x)·a + x·b
+// (a, b ≥ 0, not both 0): 2((1−x)a + xb)/(a + b).
+inline float linearPdf(float x, float a, float b) {
+    if (x < 0 || x > 1) return 0;
+    return 2 * ((1 - x) * a + x * b) / (a + b);
+}
+
+// Inverts that density's CDF, (a·x(2−x) + b·x²)/(a + b) = u. The quadratic's
+// root is written as u(a+b) / (a + √(a² + u(b² − a²))), which has no
+// cancellation for a ≈ b (pbrt-v4, "Sampling Algorithms", §A.4.1). Monotone in
+// u, so strata stay strata.
+inline float sampleLinear(float u, float a, float b) {
+    if (u == 0 && a == 0) return 0;
+    const float x = u * (a + b) / (a + std::sqrt((1 - u) * a * a + u * b * b));
+    return std::min(x, kOneMinusEpsilon);
+}
+
+// The bilinear density over [0,1]² with corner values w = (w(0,0), w(1,0),
+// w(0,1), w(1,1)), normalised: 4·bilerp(p; w) / Σw.
+inline float bilinearPdf(Vec2f p, const float (&w)[4]) {
+    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) return 0;
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    if (sum == 0) return 1;
+    return 4 *
+           ((1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] +
+            p.x * p.y * w[3]) /
+           sum;
+}
+
+// Samples it by the marginal in y — linear between the edge sums w00+w10 and
+// w01+w11 — then x given y, linear between the edges interpolated at y.
+inline Vec2f sampleBilinear(Vec2f u, const float (&w)[4]) {
+    const float y = sampleLinear(u.y, w[0] + w[1], w[2] + w[3]);
+    const float x = sampleLinear(u.x, (1 - y) * w[0] + y * w[2], (1 - y) * w[1] + y * w[3]);
+    return {x, y};
 }
 
 // The power heuristic with β = 2 (Veach 1997, eq. 9.13), for one sample from
