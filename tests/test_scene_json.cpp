@@ -215,6 +215,13 @@ TEST(JsonScene, MalformedJsonGivesLineAndColumn) {
     EXPECT_NE(msg.find("column"), std::string::npos) << msg;
 }
 
+// A number too large for a double is bad input too, not an internal error.
+TEST(JsonScene, NumberOverflowIsAnInputError) {
+    const std::string msg = inputErrorOf([] { parse("{\"camera\": {\"fovY\": 222e222222}}"); });
+    EXPECT_NE(msg.find("test.json: invalid JSON"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("number overflow"), std::string::npos) << msg;
+}
+
 struct BadCase {
     const char* from;
     const char* to;

@@ -425,7 +425,8 @@ Json parseText(const std::string& text, const std::string& source) {
         Json j = Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
         if (!duplicate.empty()) throw InputError(source + ": duplicate key '" + duplicate + "'");
         return j;
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {
+        // A syntax error or a number too large for a double (out_of_range.406).
         // what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
         std::string why = e.what();
         if (const auto p = why.find("] "); p != std::string::npos) why = why.substr(p + 2);
