@@ -149,17 +149,18 @@ void expectDirectionsFollowPdf(const LightSet& lights, Receiver r, uint64_t seed
 }
 
 TEST(LightSet, RectangleSamplingFollowsReportedPdf) {
-    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f));
+    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f), LightSampling::SolidAngle);
     ASSERT_TRUE(lights.areaLight(0).rectangle);
     int seed = 0;
     for (const Receiver& r : kReceivers) expectDirectionsFollowPdf(lights, r, ++seed, 6);
     // A two-sided light seen from behind; a parallelogram that is no rectangle
     // (sampled by area).
-    const LightSet twoSided(oneLight(tiltedRectangle(true)), Vec3f(0.0f));
+    const LightSet twoSided(oneLight(tiltedRectangle(true)), Vec3f(0.0f),
+                            LightSampling::SolidAngle);
     expectDirectionsFollowPdf(twoSided, {{0.5f, 2.5f, 0.0f}, {0, -1, 0}}, 11, 6);
     const LightSet sheared(
         oneLight(quad({-1, 2, -1}, {1, 2, -1}, {1.8f, 2, 1}, {-0.2f, 2, 1}, Vec3f(1.0f))),
-        Vec3f(0.0f));
+        Vec3f(0.0f), LightSampling::SolidAngle);
     ASSERT_TRUE(sheared.areaLight(0).parallelogram);
     ASSERT_FALSE(sheared.areaLight(0).rectangle);
     expectDirectionsFollowPdf(sheared, kReceivers[0], 12, 6);
@@ -167,7 +168,7 @@ TEST(LightSet, RectangleSamplingFollowsReportedPdf) {
 
 // ∫ pdf dω over the light is 1, integrated over its area with dω = cosθ'/r² dA.
 TEST(LightSet, RectanglePdfIntegratesToOne) {
-    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f));
+    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f), LightSampling::SolidAngle);
     const AreaLight& l = lights.areaLight(0);
     for (const Receiver& r : kReceivers) {
         double sum = 0;
@@ -186,7 +187,7 @@ TEST(LightSet, RectanglePdfIntegratesToOne) {
 // The density a sample reports is the one pdfAreaLight gives its point, and the
 // point lies on the light.
 TEST(LightSet, SamplePdfEqualsPdfAreaLight) {
-    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f));
+    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f), LightSampling::SolidAngle);
     const AreaLight& l = lights.areaLight(0);
     Pcg32 rng(5, 0);
     for (const Receiver& r : kReceivers)
@@ -207,7 +208,7 @@ TEST(LightSet, SamplePdfEqualsPdfAreaLight) {
 // plane sample it by area: the density is then dist² / (A cosθ').
 TEST(LightSet, TinyOrGrazingRectanglesAreSampledByArea) {
     const LightSet lights(oneLight(quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, Vec3f(1))),
-                          Vec3f(0.0f));
+                          Vec3f(0.0f), LightSampling::SolidAngle);
     const Vec3f p{0.3f, 2, 0.2f};
     for (const Vec3f ref : {Vec3f(0, -500, 0), Vec3f(3, 2 - 1e-6f, 0)}) {
         const Vec3f d = p - ref;
@@ -226,7 +227,7 @@ TEST(LightSet, TinyOrGrazingRectanglesAreSampledByArea) {
 // less variance than with uniform area sampling, and the same mean.
 TEST(LightSet, SolidAngleSamplingReducesDirectLightingVariance) {
     const LightSet lights(oneLight(quad({-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}, Vec3f(1))),
-                          Vec3f(0.0f));
+                          Vec3f(0.0f), LightSampling::SolidAngle);
     const AreaLight& l = lights.areaLight(0);
     const Vec3f ref{1.0f, 0.3f, 0.5f}, ns = normalize(Vec3f(0.4f, 1, 0));
     Pcg32 rng(9, 0);
@@ -250,11 +251,28 @@ TEST(LightSet, SolidAngleSamplingReducesDirectLightingVariance) {
     EXPECT_LT(varS, 0.1 * varA) << "variance " << varS << " vs area sampling " << varA;
 }
 
+// The default strategy samples even a rectangle uniformly by area: the density
+// of every sample is dist² / (A |cosθ_light|), whatever the receiver normal.
+TEST(LightSet, DefaultSamplesRectanglesByArea) {
+    const LightSet lights(oneLight(tiltedRectangle()), Vec3f(0.0f));
+    const AreaLight& l = lights.areaLight(0);
+    ASSERT_TRUE(l.rectangle);
+    EXPECT_FALSE(l.solidAngleSampling);
+    const Vec3f ref = l.p0 + l.n * 0.7f + l.e1 * 0.2f, ns = normalize(Vec3f(0.3f, -1, 0.2f));
+    Pcg32 rng(4, 0);
+    for (int i = 0; i < 200; ++i) {
+        const auto s = lights.sample(ref, ns, 0.5f, {rng.nextFloat(), rng.nextFloat()});
+        ASSERT_TRUE(s);
+        const float cosLight = std::abs(dot(l.n, s->wi));
+        EXPECT_NEAR(s->pdf, s->distance * s->distance / (l.area * cosLight), 1e-3f * s->pdf);
+    }
+}
+
 TEST(LightSet, ChoosesLightsInProportionToPower) {
     SceneDescription s;
     s.meshes.push_back(quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, Vec3f(1.0f)));
     s.meshes.push_back(quad({-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}, Vec3f(3.0f)));
-    const LightSet lights(s, Vec3f(0.0f));
+    const LightSet lights(s, Vec3f(0.0f), LightSampling::SolidAngle);
     const Vec3f ref{0, 0, 0};
     // Without a receiver normal a rectangle is sampled uniformly in solid
     // angle, so pdf·Ω is the probability of choosing the light.

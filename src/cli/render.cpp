@@ -22,6 +22,7 @@ struct RenderOptions {
     // Read wide, so an absurd count is refused by range, not by a conversion.
     int64_t spp = 16, maxDepth = 8;
     bool noRoulette = false;
+    bool solidAngleLights = false;
 };
 
 // A decimal count, saturated: "99999999999999999999" is simply very large.
@@ -60,7 +61,8 @@ void runRender(RenderOptions& o) {
     validateRenderSettings(s);
     checkWritable(o.output);  // fail before rendering, not after
     s.progress = true;
-    const RenderScene scene(loadScene(o.scene));
+    const RenderScene scene(loadScene(o.scene),
+                            o.solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
     const RenderOutput out = render(scene, s);
     writeImage(o.output, out.image);
     const RenderStats& st = out.stats;
@@ -89,6 +91,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--max-depth", opts->maxDepth, "Maximum path depth (1 = direct lighting only)")
         ->capture_default_str();
     cmd->add_flag("--no-russian-roulette", opts->noRoulette, "Disable Russian roulette");
+    cmd->add_flag("--solid-angle-lights", opts->solidAngleLights,
+                  "Sample rectangular lights by solid angle instead of by area");
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_option("-o,--output", opts->output, "Output image (.exr linear, .png sRGB, .pfm)")

@@ -191,7 +191,7 @@ Vec3f AreaLight::samplePoint(Vec2f u) const {
 std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
                                                                 Vec2f u) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
-    if (rectangle) {
+    if (solidAngleSampling) {
         const SphericalRectangle rect(*this, ref);
         if (rect.usable(*this)) {
             float pdf = float(1 / rect.solidAngle);
@@ -218,7 +218,7 @@ std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f
 
 float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return 0;
-    if (rectangle) {
+    if (solidAngleSampling) {
         const SphericalRectangle rect(*this, ref);
         if (rect.usable(*this)) {
             float pdf = float(1 / rect.solidAngle);
@@ -243,7 +243,8 @@ Vec3f AreaLight::emitted(Vec3f w) const {
     return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f);
 }
 
-LightSet::LightSet(const SceneDescription& scene, Vec3f focus) : environment_(scene.environment) {
+LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling strategy)
+    : environment_(scene.environment) {
     triangleLight_.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -265,6 +266,8 @@ LightSet::LightSet(const SceneDescription& scene, Vec3f focus) : environment_(sc
             }
         }
     }
+    for (AreaLight& l : lights_)
+        l.solidAngleSampling = l.rectangle && strategy == LightSampling::SolidAngle;
     buildDistribution(focus);
 }
 

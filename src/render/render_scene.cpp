@@ -4,14 +4,15 @@
 
 namespace pathlab {
 
-RenderScene::RenderScene(SceneDescription desc) : desc_(std::move(desc)) {
+RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
+    : desc_(std::move(desc)) {
     accel_ = std::make_unique<EmbreeAccel>(desc_);
     const Vec3f lo = accel_->boundsMin(), hi = accel_->boundsMax();
     const float extent = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
                                    std::abs(hi.y), std::abs(hi.z), 1.0f});
     // Float spacing near the scene's largest coordinate, with a safety factor.
     epsilon_ = extent * 2e-5f;
-    lights_ = std::make_unique<LightSet>(desc_, desc_.camera.target);
+    lights_ = std::make_unique<LightSet>(desc_, desc_.camera.target, lightSampling);
     triangleNormals_.resize(desc_.meshes.size());
     for (size_t m = 0; m < desc_.meshes.size(); ++m) {
         const Mesh& mesh = desc_.meshes[m];

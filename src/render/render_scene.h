@@ -23,7 +23,7 @@ struct SurfaceInteraction {
 
 class RenderScene {
   public:
-    explicit RenderScene(SceneDescription desc);
+    explicit RenderScene(SceneDescription desc, LightSampling lightSampling = LightSampling::Area);
 
     const SceneDescription& description() const { return desc_; }
     const LightSet& lights() const { return *lights_; }
