@@ -1,17 +1,15 @@
 // `pathlab compare` end to end: output formats, mode selection and errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
+#include "cli_runner.h"
 #include "core/image.h"
 
 namespace pathlab {
@@ -19,17 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using testing::CliResult;
+using testing::runPathlab;
 
 class CompareCli : public ::testing::Test {
   protected:
@@ -45,16 +34,7 @@ class CompareCli : public ::testing::Test {
 
     std::string path(const std::string& name) const { return (dir / name).string(); }
 
-    RunResult run(const std::string& args) const {
-        const std::string cmd = std::string(PATHLAB_BINARY) + " compare " + args + " >" +
-                                path("stdout.txt") + " 2>" + path("stderr.txt");
-        RunResult r;
-        const int status = std::system(cmd.c_str());
-        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(dir / "stdout.txt");
-        r.err = slurp(dir / "stderr.txt");
-        return r;
-    }
+    CliResult run(const std::string& args) const { return runPathlab("compare " + args, dir); }
 
     // A small image with some structure; `offset` changes it a little.
     std::string writePattern(const std::string& name, int w, int h, float offset,
@@ -78,7 +58,7 @@ int countLines(const std::string& s) {
 TEST_F(CompareCli, JsonForPngPairHasEveryMetricInLdrMode) {
     const std::string a = writePattern("a.png", 32, 24, 0.0f),
                       b = writePattern("b.png", 32, 24, 0.05f);
-    const RunResult r = run(a + " " + b + " --json");
+    const CliResult r = run(a + " " + b + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"mse", "rmse", "relmse", "psnr"})
@@ -98,7 +78,7 @@ TEST_F(CompareCli, JsonForPngPairHasEveryMetricInLdrMode) {
 TEST_F(CompareCli, JsonForExrPairIsHdrWithExposureRange) {
     const std::string a = writePattern("a.exr", 32, 24, 0.0f, 8.0f);
     const std::string b = writePattern("b.exr", 32, 24, 0.05f, 8.0f);
-    const RunResult r = run(a + " " + b + " --json --metric flip");
+    const CliResult r = run(a + " " + b + " --json --metric flip");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_FALSE(j.contains("mse"));
@@ -120,7 +100,7 @@ TEST_F(CompareCli, ModeCanBeOverridden) {
 
 TEST_F(CompareCli, SingleMetricAndIdenticalImages) {
     const std::string a = writePattern("a.png", 16, 16, 0.0f);
-    const RunResult r = run(a + " " + a + " --json");
+    const CliResult r = run(a + " " + a + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["mse"].get<double>(), 0.0);
@@ -135,7 +115,7 @@ TEST_F(CompareCli, SingleMetricAndIdenticalImages) {
 TEST_F(CompareCli, TextOutputIsAFewReadableLines) {
     const std::string a = writePattern("a.png", 16, 16, 0.0f),
                       b = writePattern("b.png", 16, 16, 0.1f);
-    const RunResult r = run(a + " " + b);
+    const CliResult r = run(a + " " + b);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("mse"), std::string::npos);
     EXPECT_NE(r.out.find("psnr"), std::string::npos);
@@ -146,7 +126,7 @@ TEST_F(CompareCli, TextOutputIsAFewReadableLines) {
 TEST_F(CompareCli, WritesMagmaErrorMap) {
     const std::string a = writePattern("a.png", 20, 12, 0.0f),
                       b = writePattern("b.png", 20, 12, 0.1f);
-    const RunResult r = run(a + " " + b + " --metric flip --error-map " + path("map.png"));
+    const CliResult r = run(a + " " + b + " --metric flip --error-map " + path("map.png"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Image map = readImage(path("map.png"));
     EXPECT_EQ(map.width, 20);
@@ -160,7 +140,7 @@ TEST_F(CompareCli, WritesMagmaErrorMap) {
 TEST_F(CompareCli, DifferentSizesFailWithOneLineAndNoMap) {
     const std::string a = writePattern("a.png", 16, 16, 0.0f),
                       b = writePattern("b.png", 16, 12, 0.0f);
-    const RunResult r = run(a + " " + b + " --error-map " + path("map.png"));
+    const CliResult r = run(a + " " + b + " --error-map " + path("map.png"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("16x12"), std::string::npos) << r.err;
@@ -170,7 +150,7 @@ TEST_F(CompareCli, DifferentSizesFailWithOneLineAndNoMap) {
 
 TEST_F(CompareCli, UnreadableFilesFail) {
     const std::string a = writePattern("a.png", 8, 8, 0.0f);
-    RunResult r = run(a + " " + path("missing.png"));
+    CliResult r = run(a + " " + path("missing.png"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("missing.png"), std::string::npos);
@@ -187,7 +167,7 @@ TEST_F(CompareCli, NonFinitePixelsAreCountedAndRejected) {
     img.rgb[31] = std::numeric_limits<float>::quiet_NaN();  // same pixel as 30
     writeImage(path("bad.exr"), img);
     writeImage(path("good.exr"), Image(8, 8));
-    const RunResult r =
+    const CliResult r =
         run(path("good.exr") + " " + path("bad.exr") + " --error-map " + path("m.png"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
@@ -197,7 +177,7 @@ TEST_F(CompareCli, NonFinitePixelsAreCountedAndRejected) {
 
 TEST_F(CompareCli, UnwritableErrorMapFailsBeforeWorkAndLeavesNothing) {
     const std::string a = writePattern("a.png", 8, 8, 0.0f), b = writePattern("b.png", 8, 8, 0.1f);
-    const RunResult r = run(a + " " + b + " --error-map " + path("no/such/dir/map.png"));
+    const CliResult r = run(a + " " + b + " --error-map " + path("no/such/dir/map.png"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_TRUE(r.out.empty());
@@ -212,7 +192,7 @@ TEST_F(CompareCli, UnwritableErrorMapFailsBeforeWorkAndLeavesNothing) {
 
 TEST_F(CompareCli, BadMetricIsAUsageError) {
     const std::string a = writePattern("a.png", 8, 8, 0.0f);
-    const RunResult r = run(a + " " + a + " --metric ssim");
+    const CliResult r = run(a + " " + a + " --metric ssim");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
 }

@@ -12,7 +12,7 @@ namespace {
 using testing::runPathlab;
 
 class RenderCli : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override { dir = testing::scratchDirectory("render"); }
     void TearDown() override { std::filesystem::remove_all(dir); }
     std::string path(const std::string& name) const { return (dir / name).string(); }
@@ -23,8 +23,8 @@ protected:
 
 TEST_F(RenderCli, WritesExrAndPngOfTheCornellBox) {
     for (const char* name : {"cb.exr", "cb.png"}) {
-        const auto r = runPathlab("render --scene cornell-box --spp 4 --size 32x24 -o " + path(name),
-                                  dir);
+        const auto r =
+            runPathlab("render --scene cornell-box --spp 4 --size 32x24 -o " + path(name), dir);
         ASSERT_EQ(r.exitCode, 0) << r.err;
         const Image img = readImage(path(name));
         EXPECT_EQ(img.width, 32);
@@ -38,9 +38,12 @@ TEST_F(RenderCli, WritesExrAndPngOfTheCornellBox) {
 TEST_F(RenderCli, IdenticalBytesForOneTwoAndEightThreads) {
     std::string first;
     for (int threads : {1, 2, 8}) {
-        const std::string out = path("t" + std::to_string(threads) + ".exr");
-        const auto r = runPathlab("render --scene cornell-box --spp 8 --size 48x40 --seed 3 "
-                                  "--threads " + std::to_string(threads) + " -o " + out, dir);
+        const std::string out = path(std::to_string(threads) + "-threads.exr");
+        const auto r = runPathlab(
+            "render --scene cornell-box --spp 8 --size 48x40 --seed 3 "
+            "--threads " +
+                std::to_string(threads) + " -o " + out,
+            dir);
         ASSERT_EQ(r.exitCode, 0) << r.err;
         const std::string bytes = testing::slurpFile(out);
         if (first.empty()) first = bytes;
@@ -78,8 +81,8 @@ TEST_F(RenderCli, BadInputIsOneLineAndExitCodeTwo) {
 }
 
 TEST_F(RenderCli, UnwritableOutputFailsBeforeRendering) {
-    const auto r = runPathlab("render --scene cornell-box --spp 1 -o " + path("missing/dir/x.png"),
-                              dir);
+    const auto r =
+        runPathlab("render --scene cornell-box --spp 1 -o " + path("missing/dir/x.png"), dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(r.errLines(), 1) << r.err;
     const auto r2 = runPathlab("render --scene cornell-box --spp 1 -o " + path("x.tiff"), dir);
@@ -87,16 +90,18 @@ TEST_F(RenderCli, UnwritableOutputFailsBeforeRendering) {
     EXPECT_NE(r2.err.find(".tiff"), std::string::npos) << r2.err;
     if (::geteuid() != 0) {  // root ignores directory permissions
         std::filesystem::create_directory(dir / "ro");
-        std::filesystem::permissions(dir / "ro", std::filesystem::perms::owner_read |
-                                                     std::filesystem::perms::owner_exec);
-        const auto r3 = runPathlab("render --scene cornell-box --spp 1 -o " + path("ro/x.png"), dir);
+        std::filesystem::permissions(
+            dir / "ro", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+        const auto r3 =
+            runPathlab("render --scene cornell-box --spp 1 -o " + path("ro/x.png"), dir);
         EXPECT_EQ(r3.exitCode, 2);
     }
 }
 
 TEST_F(RenderCli, ExistingOutputSurvivesAFailedRun) {
     const std::string out = path("keep.png");
-    ASSERT_EQ(runPathlab("render --scene cornell-box --spp 1 --size 8x8 -o " + out, dir).exitCode, 0);
+    ASSERT_EQ(runPathlab("render --scene cornell-box --spp 1 --size 8x8 -o " + out, dir).exitCode,
+              0);
     const std::string before = testing::slurpFile(out);
     EXPECT_EQ(runPathlab("render --scene cornell-box --spp 0 -o " + out, dir).exitCode, 2);
     EXPECT_EQ(testing::slurpFile(out), before);

@@ -239,7 +239,10 @@ std::string quoted(const std::string& s) {
 template <typename T, typename F>
 std::string tomlArray(const std::vector<T>& items, F format) {
     std::string out = "[";
-    for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + format(items[i]);
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (i) out += ", ";
+        out += format(items[i]);
+    }
     return out + "]";
 }
 
