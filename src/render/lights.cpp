@@ -175,6 +175,25 @@ bool hasNormal(Vec3f ns) {
     return ns.x != 0 || ns.y != 0 || ns.z != 0;
 }
 
+// The light as a spherical rectangle seen from ref, when it is sampled by solid
+// angle there; nothing when area sampling applies.
+std::optional<SphericalRectangle> solidAngleView(const AreaLight& l, Vec3f ref) {
+    if (!l.solidAngleSampling) return std::nullopt;
+    const SphericalRectangle rect(l, ref);
+    if (!rect.usable(l)) return std::nullopt;
+    return rect;
+}
+
+// Uniform area density 1/A per unit solid angle at ref: dist² / (A |cosθ_light|);
+// 0 when p is ref itself or lies edge-on.
+float areaDensity(const AreaLight& l, Vec3f ref, Vec3f p) {
+    const Vec3f d = p - ref;
+    const float dist2 = dot(d, d);
+    const float cosLight = std::abs(dot(l.n, d)) / std::sqrt(dist2);
+    if (!(cosLight > 0)) return 0;
+    return dist2 / (l.area * cosLight);
+}
+
 }  // namespace
 
 float AreaLight::power() const {
@@ -191,52 +210,38 @@ Vec3f AreaLight::samplePoint(Vec2f u) const {
 std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
                                                                 Vec2f u) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
-    if (solidAngleSampling) {
-        const SphericalRectangle rect(*this, ref);
-        if (rect.usable(*this)) {
-            float pdf = float(1 / rect.solidAngle);
-            if (hasNormal(ns)) {
-                float w[4];
-                rect.cornerCosines(*this, ns, w);
-                u = sampleBilinear(u, w);
-                pdf *= bilinearPdf(u, w);
-            }
-            const auto [xu, yv] = rect.sample(u);
-            // (xu, yv) are relative to the reference point's foot; p0 sits at (x0, y0).
-            const Vec3f p = p0 + xAxis * float(xu - rect.x0) + yAxis * float(yv - rect.y0);
-            return DirectionSample{p, pdf};
+    if (const auto rect = solidAngleView(*this, ref)) {
+        float pdf = float(1 / rect->solidAngle);
+        if (hasNormal(ns)) {
+            float w[4];
+            rect->cornerCosines(*this, ns, w);
+            u = sampleBilinear(u, w);
+            pdf *= bilinearPdf(u, w);
         }
+        const auto [xu, yv] = rect->sample(u);
+        // (xu, yv) are relative to the reference point's foot; p0 sits at (x0, y0).
+        const Vec3f p = p0 + xAxis * float(xu - rect->x0) + yAxis * float(yv - rect->y0);
+        return DirectionSample{p, pdf};
     }
-    // Uniform by area: density 1/A, per solid angle dist² / (A |cosθ_light|).
     const Vec3f p = samplePoint(u);
-    const Vec3f d = p - ref;
-    const float dist2 = dot(d, d);
-    const float cosLight = std::abs(dot(n, d)) / std::sqrt(dist2);
-    if (!(dist2 > 0) || cosLight <= 0) return std::nullopt;
-    return DirectionSample{p, dist2 / (area * cosLight)};
+    const float pdf = areaDensity(*this, ref, p);
+    if (pdf <= 0) return std::nullopt;
+    return DirectionSample{p, pdf};
 }
 
 float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return 0;
-    if (solidAngleSampling) {
-        const SphericalRectangle rect(*this, ref);
-        if (rect.usable(*this)) {
-            float pdf = float(1 / rect.solidAngle);
-            if (hasNormal(ns)) {
-                float w[4];
-                rect.cornerCosines(*this, ns, w);
-                const Vec3f q = p - p0;
-                pdf *=
-                    bilinearPdf(rect.invert(rect.x0 + dot(q, xAxis), rect.y0 + dot(q, yAxis)), w);
-            }
-            return pdf;
+    if (const auto rect = solidAngleView(*this, ref)) {
+        float pdf = float(1 / rect->solidAngle);
+        if (hasNormal(ns)) {
+            float w[4];
+            rect->cornerCosines(*this, ns, w);
+            const Vec3f q = p - p0;
+            pdf *= bilinearPdf(rect->invert(rect->x0 + dot(q, xAxis), rect->y0 + dot(q, yAxis)), w);
         }
+        return pdf;
     }
-    const Vec3f d = p - ref;
-    const float dist2 = dot(d, d);
-    const float cosLight = std::abs(dot(n, d)) / std::sqrt(dist2);
-    if (!(cosLight > 0)) return 0;
-    return dist2 / (area * cosLight);
+    return areaDensity(*this, ref, p);
 }
 
 Vec3f AreaLight::emitted(Vec3f w) const {
