@@ -25,55 +25,95 @@ struct Tile {
     int x0, y0, x1, y1;
 };
 
+// Where a pixel's running sums are written out: after each prefix's sample
+// count, and after all samples (the last checkpoint).
+struct Checkpoints {
+    std::vector<int> spp;  // ascending; the last is samplesPerPixel
+    std::vector<Image*> image, variance;
+    bool timed = false;  // measure the time each prefix takes
+};
+
 struct TileResult {
     PathCounters counters;
     uint64_t nonFinite = 0;
+    std::vector<uint64_t> nonFiniteAt;  // per checkpoint, samples so far
+    std::vector<double> secondsAt;      // per checkpoint, pixel time so far
 };
+
+// Mean and variance of the mean of the first n samples, from running sums.
+void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, Image& image,
+                Image& variance) {
+    float mean[3], var[3];
+    for (int c = 0; c < 3; ++c) {
+        const double m = sum[c] / n;
+        const double v = n > 1 ? std::max(0.0, (sumSq[c] - n * m * m) / (n - 1)) : 0;
+        mean[c] = float(m);
+        var[c] = float(v / n);
+    }
+    image.set(p.x, p.y, Vec3f(mean[0], mean[1], mean[2]));
+    variance.set(p.x, p.y, Vec3f(var[0], var[1], var[2]));
+}
+
+using Clock = std::chrono::steady_clock;
+
+template <Sampler S>
+void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampler, Vec2i pixel,
+                 const IntegratorSettings& integrator, const Checkpoints& checkpoints,
+                 TileResult& result) {
+    const int spp = sampler.samplesPerPixel();
+    const Clock::time_point start = checkpoints.timed ? Clock::now() : Clock::time_point{};
+    double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
+    size_t next = 0;  // the next checkpoint
+    // The pixel's camera rays are nearly parallel: trace them as packets.
+    for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
+        const int count = std::min(kPacketWidth, spp - i0);
+        Vec3f dirs[kPacketWidth];
+        for (int k = 0; k < count; ++k) {
+            sampler.startPixelSample(pixel, i0 + k, dims::kPixel);
+            const Vec2f u = sampler.getPixel2D();
+            dirs[k] = camera.direction(float(pixel.x) + u.x, float(pixel.y) + u.y);
+        }
+        SurfaceInteraction first[kPacketWidth];
+        bool found[kPacketWidth];
+        scene.intersectPacket(camera.eye(), dirs, count, first, found);
+        result.counters.rays += uint64_t(count);
+        result.counters.dimensions += 2 * uint64_t(count);
+        for (int k = 0; k < count; ++k) {
+            Vec3f L = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k], sampler,
+                                       pixel, i0 + k, integrator, result.counters);
+            if (!isFinite(L)) {  // never let a NaN/Inf reach the image
+                ++result.nonFinite;
+                L = Vec3f(0.0f);
+            }
+            for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+            if (i0 + k + 1 != checkpoints.spp[next]) continue;
+            // Summed in index order either way: bit-identical to a render
+            // that stops here.
+            writePixel(sum, sumSq, i0 + k + 1, pixel, *checkpoints.image[next],
+                       *checkpoints.variance[next]);
+            result.nonFiniteAt[next] += result.nonFinite;
+            if (checkpoints.timed)
+                result.secondsAt[next] +=
+                    std::chrono::duration<double>(Clock::now() - start).count();
+            ++next;
+        }
+    }
+}
 
 template <Sampler S>
 TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& sampler,
-                      const Tile& tile, const IntegratorSettings& integrator, RenderOutput& out) {
+                      const Tile& tile, const IntegratorSettings& integrator,
+                      const Checkpoints& checkpoints) {
     TileResult result;
-    const int spp = sampler.samplesPerPixel();
-    for (int y = tile.y0; y < tile.y1; ++y) {
+    result.nonFiniteAt.assign(checkpoints.spp.size(), 0);
+    result.secondsAt.assign(checkpoints.spp.size(), 0.0);
+    for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
-            const Vec2i pixel{x, y};
-            double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
-            // The pixel's camera rays are nearly parallel: trace them as packets.
-            for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
-                const int count = std::min(kPacketWidth, spp - i0);
-                Vec3f dirs[kPacketWidth];
-                for (int k = 0; k < count; ++k) {
-                    sampler.startPixelSample(pixel, i0 + k, dims::kPixel);
-                    const Vec2f u = sampler.getPixel2D();
-                    dirs[k] = camera.direction(float(x) + u.x, float(y) + u.y);
-                }
-                SurfaceInteraction first[kPacketWidth];
-                bool found[kPacketWidth];
-                scene.intersectPacket(camera.eye(), dirs, count, first, found);
-                result.counters.rays += uint64_t(count);
-                result.counters.dimensions += 2 * uint64_t(count);
-                for (int k = 0; k < count; ++k) {
-                    Vec3f L = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k],
-                                               sampler, pixel, i0 + k, integrator, result.counters);
-                    if (!isFinite(L)) {  // never let a NaN/Inf reach the image
-                        ++result.nonFinite;
-                        L = Vec3f(0.0f);
-                    }
-                    for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
-                }
-            }
-            Vec3f mean, var;
-            for (int c = 0; c < 3; ++c) {
-                const double m = sum[c] / spp;
-                const double v = spp > 1 ? std::max(0.0, (sumSq[c] - spp * m * m) / (spp - 1)) : 0;
-                (c == 0 ? mean.x : c == 1 ? mean.y : mean.z) = float(m);
-                (c == 0 ? var.x : c == 1 ? var.y : var.z) = float(v / spp);
-            }
-            out.image.set(x, y, mean);
-            out.varianceOfMean.set(x, y, var);
+            const uint64_t before = result.nonFinite;
+            result.nonFinite = 0;  // per pixel while it renders
+            renderPixel(scene, camera, sampler, Vec2i{x, y}, integrator, checkpoints, result);
+            result.nonFinite += before;
         }
-    }
     return result;
 }
 
@@ -115,7 +155,17 @@ void validateRenderSettings(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 4096)
         throw InputError("threads must be between 0 (all cores) and 4096, got " +
                          std::to_string(s.threads));
-    makeSampler(s.sampler, SamplerConfig{});
+    const SamplerInfo& info = samplerInfo(s.sampler);
+    int previous = 0;
+    for (int n : s.prefixSpp) {
+        if (n <= previous || n >= s.samplesPerPixel)
+            throw InputError("prefix sample counts must ascend and stay below spp " +
+                             std::to_string(s.samplesPerPixel) + ", got " + std::to_string(n));
+        previous = n;
+    }
+    if (!s.prefixSpp.empty() && !info.progressive)
+        throw InputError("sampler '" + s.sampler +
+                         "' is not progressive: its first samples are not a render of fewer");
 }
 
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
@@ -133,7 +183,20 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         for (int x = 0; x < res.x; x += kTileSize)
             tiles.push_back({x, y, std::min(x + kTileSize, res.x), std::min(y + kTileSize, res.y)});
 
-    RenderOutput out{Image(res.x, res.y), Image(res.x, res.y), {}};
+    RenderOutput out{Image(res.x, res.y), Image(res.x, res.y), {}, {}};
+    for (int n : settings.prefixSpp)
+        out.prefixes.push_back({n, Image(res.x, res.y), Image(res.x, res.y), 0, 0});
+    Checkpoints checkpoints;
+    for (PrefixImage& p : out.prefixes) {
+        checkpoints.spp.push_back(p.spp);
+        checkpoints.image.push_back(&p.image);
+        checkpoints.variance.push_back(&p.varianceOfMean);
+    }
+    checkpoints.spp.push_back(settings.samplesPerPixel);
+    checkpoints.image.push_back(&out.image);
+    checkpoints.variance.push_back(&out.varianceOfMean);
+    checkpoints.timed = !out.prefixes.empty();
+
     std::vector<TileResult> results(tiles.size());
     ProgressBar progress(settings.progress, tiles.size());
     std::optional<tbb::global_control> limit;
@@ -147,24 +210,39 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         happensAfter(&tasksStart);
         AnySampler sampler = prototype;
         results[t] = std::visit(
-            [&](auto& s) { return renderTile(scene, camera, s, tiles[t], integrator, out); },
+            [&](auto& s) {
+                return renderTile(scene, camera, s, tiles[t], integrator, checkpoints);
+            },
             sampler);
         progress.advance();
         happensBefore(&tasksEnd);
     };
     happensBefore(&tasksStart);
+    const auto parallelStart = std::chrono::steady_clock::now();
     tbb::parallel_for(size_t(0), tiles.size(), renderOneTile);
+    const double parallelSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - parallelStart).count();
     happensAfter(&tasksEnd);
 
+    std::vector<double> pixelSeconds(checkpoints.spp.size(), 0.0);
     for (const TileResult& r : results) {
         out.stats.rays += r.counters.rays;
         out.stats.shadowRays += r.counters.shadowRays;
         out.stats.dimensions += r.counters.dimensions;
         out.stats.nonFinite += r.nonFinite;
+        for (size_t k = 0; k < out.prefixes.size(); ++k) {
+            out.prefixes[k].nonFinite += r.nonFiniteAt[k];
+            pixelSeconds[k] += r.secondsAt[k];
+        }
+        pixelSeconds.back() += r.secondsAt.back();
     }
     out.stats.paths = uint64_t(res.x) * uint64_t(res.y) * uint64_t(settings.samplesPerPixel);
     out.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double fixedSeconds = std::max(0.0, out.stats.seconds - parallelSeconds);
+    for (size_t k = 0; k < out.prefixes.size(); ++k)
+        out.prefixes[k].seconds =
+            fixedSeconds + parallelSeconds * pixelSeconds[k] / std::max(pixelSeconds.back(), 1e-12);
     return out;
 }
 

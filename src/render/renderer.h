@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/render_scene.h"
@@ -20,6 +21,10 @@ struct RenderSettings {
     bool russianRoulette = true;
     int threads = 0;  // 0: all cores
     bool progress = false;
+    // Also keep the image after each of these sample counts (ascending, each
+    // below samplesPerPixel). Only for progressive samplers (SamplerInfo), for
+    // which each is bit-identical to a render at that spp.
+    std::vector<int> prefixSpp;
 };
 
 struct RenderStats {
@@ -31,10 +36,21 @@ struct RenderStats {
     uint64_t nonFinite = 0;   // samples that were NaN/Inf and were discarded
 };
 
+// The image of the first `spp` samples of every pixel.
+struct PrefixImage {
+    int spp = 0;
+    Image image, varianceOfMean;
+    // What a render of `spp` samples takes: the render's fixed cost plus its
+    // parallel time × the share of per-pixel time spent on these samples.
+    double seconds = 0;
+    uint64_t nonFinite = 0;
+};
+
 struct RenderOutput {
     Image image;           // mean radiance per pixel
     Image varianceOfMean;  // per pixel and channel: sample variance / spp
     RenderStats stats;
+    std::vector<PrefixImage> prefixes;  // one per RenderSettings::prefixSpp
 };
 
 // Throws InputError when a setting is out of range or the sampler is unknown.

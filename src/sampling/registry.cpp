@@ -19,41 +19,51 @@ std::function<AnySampler(const SamplerConfig&)> maker() {
 
 const std::vector<Entry>& entries() {
     static const std::vector<Entry> list = {
-        {{"standard", "minimal-standard LCG (Park & Miller) via uniform_real_distribution", 0,
+        {{"standard", "minimal-standard LCG (Park & Miller) via uniform_real_distribution", 0, true,
           true},
          maker<StandardSampler>()},
         {{"halton", "Halton radical inverses in prime bases, image-plane mapped, unscrambled",
-          kPrimeTableSize, false},
+          kPrimeTableSize, false, true},
          maker<HaltonSampler>()},
         {{"halton-rd", "Halton with one seeded random digit permutation per base", kPrimeTableSize,
-          true},
+          true, true},
          maker<RandomDigitHaltonSampler>()},
         {{"halton-owen", "Halton with hash-based nested (Owen) digit scrambling", kPrimeTableSize,
-          true},
+          true, true},
          maker<OwenHaltonSampler>()},
         {{"blue-noise", "void-and-cluster blue-noise texture looked up per pixel and dimension", 0,
-          true},
+          true, true},
          maker<BlueNoiseSampler>()},
-        {{"independent", "uniform random numbers from PCG32", 0, true},
+        {{"independent", "uniform random numbers from PCG32", 0, true, true},
          maker<IndependentSampler>()},
-        {{"stratified", "jittered strata per pixel and dimension pair, randomly padded", 2, true},
+        {{"stratified", "jittered strata per pixel and dimension pair, randomly padded", 2, true,
+          false},
          maker<StratifiedSampler>()},
         {{"sobol", "global Sobol' (Joe-Kuo), image-plane mapped, unscrambled", kSobolDimensions,
-          false},
+          false, true},
          maker<SobolSampler>()},
         {{"sobol-xor", "global Sobol' with a random digital shift per dimension", kSobolDimensions,
-          true},
+          true, true},
          maker<XorSobolSampler>()},
-        {{"sobol-owen", "padded Owen-scrambled Sobol' pairs per pixel (Burley 2020)", 2, true},
+        {{"sobol-owen", "padded Owen-scrambled Sobol' pairs per pixel (Burley 2020)", 2, true,
+          true},
          maker<OwenSobolSampler>()},
         {{"zsobol", "Morton-ordered Owen-scrambled Sobol', blue-noise error (Ahmed & Wonka 2020)",
-          2, true},
+          2, true, false},
          maker<ZSobolSampler>()},
-        {{"pmj02", "progressive multi-jittered (0,2) sequences, padded per dimension pair", 2,
-          true},
+        {{"pmj02", "progressive multi-jittered (0,2) sequences, padded per dimension pair", 2, true,
+          false},
          maker<Pmj02Sampler>()},
     };
     return list;
+}
+
+const Entry& entry(const std::string& name) {
+    for (const Entry& e : entries())
+        if (e.info.name == name) return e;
+    std::string known;
+    for (const Entry& e : entries()) known += (known.empty() ? "" : ", ") + e.info.name;
+    throw InputError("unknown sampler '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace
@@ -67,12 +77,12 @@ const std::vector<SamplerInfo>& samplerInfos() {
     return infos;
 }
 
+const SamplerInfo& samplerInfo(const std::string& name) {
+    return entry(name).info;
+}
+
 AnySampler makeSampler(const std::string& name, const SamplerConfig& config) {
-    for (const Entry& e : entries())
-        if (e.info.name == name) return e.make(config);
-    std::string known;
-    for (const Entry& e : entries()) known += (known.empty() ? "" : ", ") + e.info.name;
-    throw InputError("unknown sampler '" + name + "' (known: " + known + ")");
+    return entry(name).make(config);
 }
 
 }  // namespace pathlab

@@ -30,10 +30,20 @@ struct SamplerInfo {
     std::string description;  // one line
     int nativeDimensions;     // 0 = unbounded
     bool randomized;          // does the seed change its output?
+    // Does sample i come out the same whatever samplesPerPixel the sampler
+    // was built for? Then the first N samples of an M-spp render are exactly
+    // an N-spp render, and a study renders all of a sampler's spp at once.
+    // Not so where the pattern is laid out for the whole count: stratified
+    // (strata per spp), zsobol (the Morton index holds log2 spp bits), pmj02
+    // (tables and index shuffle of 2^ceil(log2 spp) points).
+    bool progressive;
 };
 
 // All samplers, in the order `pathlab samplers` lists them.
 const std::vector<SamplerInfo>& samplerInfos();
+
+// The sampler called `name`; throws InputError like makeSampler when unknown.
+const SamplerInfo& samplerInfo(const std::string& name);
 
 // The dimensions (i, j) of sample `index` at `pixel`, drawn the way the
 // renderer draws them: dimensions (0, 1) through getPixel2D(), a pair the

@@ -2,13 +2,16 @@
 
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
+#include <map>
 #include <memory>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "metrics/error_map.h"
 #include "render/renderer.h"
+#include "sampling/registry.h"
 #include "scene/loader.h"
 #include "study/analysis.h"
 #include "study/cell_metrics.h"
@@ -52,8 +55,15 @@ double pixels(const StudySpec& spec) {
     return double(spec.resolution.x) * spec.resolution.y;
 }
 
-double cellWork(const StudySpec& spec, int spp) {
-    return pixels(spec) * (spp + kCellOverheadSpp);
+// The samples a cell adds to the study. A progressive sampler's cells are
+// prefixes of one render (see planRenders), so each adds only the samples
+// beyond the next smaller spp of the list.
+double cellWork(const StudySpec& spec, const CellKey& key) {
+    int previous = 0;
+    if (samplerInfo(key.sampler).progressive)
+        for (int spp : spec.spp)
+            if (spp < key.spp) previous = std::max(previous, spp);
+    return pixels(spec) * (key.spp - previous + kCellOverheadSpp);
 }
 
 std::vector<CellKey> sceneCells(const StudySpec& spec, const std::string& scene) {
@@ -205,28 +215,51 @@ void writeCellImages(const fs::path& dir, const CellKey& key, const Image& image
     writeImage(stem + ".png", image, ref.exposure);  // last: cellComplete looks for it
 }
 
-void renderCell(const SceneJob& job, const Reference& ref, const CellKey& key, StudyContext& ctx) {
-    RenderSettings s;
-    s.sampler = key.sampler;
-    s.samplesPerPixel = key.spp;
-    s.seed = uint64_t(key.seed);
-    s.resolution = ctx.spec.resolution;
-    s.maxDepth = ctx.spec.maxDepth;
-    s.russianRoulette = ctx.spec.russianRoulette;
-    s.threads = ctx.options.threads;
-    const RenderOutput out = render(*job.render, s);
-    const CellMetrics m = measureCell(ref.image, out.image, ref.exposure, ctx.spec);
+std::string cellLabel(const CellKey& k) {
+    return k.scene + " " + k.sampler + " " + std::to_string(k.spp) + " spp seed " +
+           std::to_string(k.seed);
+}
+
+// One render of the study: a cell, or all of a progressive sampler's missing
+// cells at one seed, the smaller spp taken as prefixes of the largest — the
+// same images as rendering each alone (RenderSettings::prefixSpp), for the
+// cost of the largest.
+struct CellRender {
+    std::string sampler;
+    int seed = 0;
+    std::vector<int> spp;  // ascending
+};
+
+std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
+    std::vector<CellRender> plan;
+    std::map<std::pair<std::string, int>, size_t> grouped;  // (sampler, seed) → plan index
+    for (const CellKey& key : todo) {
+        if (!samplerInfo(key.sampler).progressive) {
+            plan.push_back({key.sampler, key.seed, {key.spp}});
+            continue;
+        }
+        const auto [it, added] = grouped.try_emplace({key.sampler, key.seed}, plan.size());
+        if (added) plan.push_back({key.sampler, key.seed, {}});
+        plan[it->second].spp.push_back(key.spp);
+    }
+    for (CellRender& r : plan) std::sort(r.spp.begin(), r.spp.end());
+    return plan;
+}
+
+void recordCell(const Reference& ref, const CellKey& key, const Image& image, double seconds,
+                uint64_t nonFinite, StudyContext& ctx) {
+    const CellMetrics m = measureCell(ref.image, image, ref.exposure, ctx.spec);
     createDirectories((ctx.options.dir / cellStem(key)).parent_path());
-    writeCellImages(ctx.options.dir, key, out.image, ref, m);
+    writeCellImages(ctx.options.dir, key, image, ref, m);
     CellRow row{key,
-                out.stats.seconds,
+                seconds,
                 m.mse,
                 m.rmse,
                 m.relmse,
                 m.flip,
                 m.flipMedian,
                 m.psnr,
-                int64_t(out.stats.nonFinite),
+                int64_t(nonFinite),
                 cellStem(key) + ".exr",
                 ctx.spec.resolution.x,
                 ctx.spec.resolution.y,
@@ -235,11 +268,28 @@ void renderCell(const SceneJob& job, const Reference& ref, const CellKey& key, S
                 sourceGitCommit(),
                 isoTimestampUtc()};
     ctx.store.putCell(row);
+    ++ctx.run.cellsRendered;
+    ctx.progress.rendered(cellLabel(key), cellWork(ctx.spec, key));
 }
 
-std::string cellLabel(const CellKey& k) {
-    return k.scene + " " + k.sampler + " " + std::to_string(k.spp) + " spp seed " +
-           std::to_string(k.seed);
+void renderCells(const SceneJob& job, const Reference& ref, const CellRender& cells,
+                 StudyContext& ctx) {
+    RenderSettings s;
+    s.sampler = cells.sampler;
+    s.samplesPerPixel = cells.spp.back();
+    s.prefixSpp.assign(cells.spp.begin(), cells.spp.end() - 1);
+    s.seed = uint64_t(cells.seed);
+    s.resolution = ctx.spec.resolution;
+    s.maxDepth = ctx.spec.maxDepth;
+    s.russianRoulette = ctx.spec.russianRoulette;
+    s.threads = ctx.options.threads;
+    const RenderOutput out = render(*job.render, s);
+    const auto key = [&](int spp) {
+        return CellKey{job.scene.name, cells.sampler, spp, cells.seed};
+    };
+    for (const PrefixImage& p : out.prefixes)
+        recordCell(ref, key(p.spp), p.image, p.seconds, p.nonFinite, ctx);
+    recordCell(ref, key(s.samplesPerPixel), out.image, out.stats.seconds, out.stats.nonFinite, ctx);
 }
 
 void runScene(const SceneJob& job, StudyContext& ctx) {
@@ -247,7 +297,7 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
     std::vector<CellKey> todo;
     for (const CellKey& key : cells) {
         if (cellComplete(ctx.options.dir, ctx.store, key)) {
-            ctx.progress.skipped(cellWork(ctx.spec, key.spp));
+            ctx.progress.skipped(cellWork(ctx.spec, key));
             ++ctx.run.cellsSkipped;
         } else {
             todo.push_back(key);
@@ -255,11 +305,7 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
     }
     const Reference ref = obtainReference(job, ctx);
     recordReference(job, ref, ctx);
-    for (const CellKey& key : todo) {
-        renderCell(job, ref, key, ctx);
-        ++ctx.run.cellsRendered;
-        ctx.progress.rendered(cellLabel(key), cellWork(ctx.spec, key.spp));
-    }
+    for (const CellRender& cells : planRenders(todo)) renderCells(job, ref, cells, ctx);
 }
 
 // All the study's work, in samples: every cell, and the references not yet
@@ -269,7 +315,7 @@ double totalWork(const StudySpec& spec, const std::vector<SceneJob>& jobs) {
     double work = 0;
     for (const SceneJob& job : jobs) {
         if (!cache.contains(job.cacheKey)) work += pixels(spec) * spec.reference.spp;
-        for (const CellKey& key : sceneCells(spec, job.scene.name)) work += cellWork(spec, key.spp);
+        for (const CellKey& key : sceneCells(spec, job.scene.name)) work += cellWork(spec, key);
     }
     return work;
 }
