@@ -20,14 +20,6 @@ uint64_t multiplicativeInverse(int64_t a, int64_t n) {
     return static_cast<uint64_t>(((t0 % n) + n) % n);
 }
 
-// The float nearest below v: rounding to nearest could lift a point sitting
-// just under a b-adic stratum boundary into the next stratum.
-float floatBelow(double v) {
-    float f = static_cast<float>(v);
-    if (static_cast<double>(f) > v) f = std::nextafter(f, 0.0f);
-    return std::min(f, kOneMinusEpsilon);
-}
-
 }  // namespace
 
 HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
@@ -55,6 +47,34 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         for (int i = base - 1; i > 0; --i) std::swap(perm[i], perm[rng.nextUInt(i + 1)]);
         for (int k = 0; k < kMaxDigits; ++k)
             shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
+    }
+    tails.resize(size_t(kTabulatedBases) * kMaxDigits);
+    powers.resize(size_t(kTabulatedBases) * kMaxDigits);
+    dimensions.reserve(kTabulatedBases);
+    rotations.resize(table.size() + kTabulatedBases);
+    for (int d = 0; d < kTabulatedBases; ++d) {
+        const int base = primes[d];
+        const int digits = floatDigitCount(base);
+        const uint16_t* perm = table.data() + offset[d];
+        const uint16_t* shift = shifts.data() + size_t(d) * kMaxDigits;
+        uint64_t* tail = tails.data() + size_t(d) * kMaxDigits;
+        uint64_t* power = powers.data() + size_t(d) * kMaxDigits;
+        tail[digits] = 0, power[digits] = 1;
+        for (int k = digits - 1; k >= 0; --k) {
+            power[k] = power[k + 1] * uint64_t(base);
+            tail[k] = perm[shift[k]] * power[k + 1] + tail[k + 1];  // digit 0 ↦ π_b(s_k)
+        }
+        // The same product of rounded 1/b the digit loops form.
+        const double invBase = 1.0 / base;
+        double scale = 1.0;
+        for (int k = 0; k < digits; ++k) scale *= invBase;
+        const uint64_t owenHash = hashValues(seed, d, 0x4f57454eu);
+        uint16_t* rotation = rotations.data() + offset[d] + d;
+        rotation[0] = uint16_t(owenRotation(owenHash, 0, 0, uint32_t(base)));
+        for (int d0 = 0; d0 < base; ++d0)
+            rotation[1 + d0] = uint16_t(owenRotation(owenHash, 1, uint64_t(d0), uint32_t(base)));
+        dimensions.push_back(HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits,
+                                             scale, perm, shift, tail, power, owenHash, rotation});
     }
 }
 
@@ -128,27 +148,12 @@ float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation 
 
 float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                   uint64_t dimensionHash) {
-    // The permutation of digit k is chosen by hashing the digits above it (the
-    // node of Owen's tree the point lies in): points sharing the first k digits
-    // share the permutation, so b-adic strata map to b-adic strata.
     const int digits = floatDigitCount(base);
-    const BaseDivider divider{uint32_t(base)};
     const double invBase = 1.0 / base;
-    double invBaseM = 1.0;
-    uint64_t reversed = 0;
-    for (int k = 0; k < digits; ++k) {
-        const uint64_t next = divider.quotient(a);
-        const uint64_t node = mixBits(dimensionHash ^ (reversed * 0x9e3779b97f4a7c15ULL + k));
-        // The node's shift in [0, base): the hash's top 32 bits scaled by base
-        // (Lemire's multiply-shift range reduction, no division).
-        const auto shift = uint32_t(((node >> 32) * uint64_t(base)) >> 32);
-        uint32_t digit = uint32_t(a - next * base) + shift;
-        if (digit >= uint32_t(base)) digit -= uint32_t(base);
-        reversed = reversed * base + permutation(digit);
-        invBaseM *= invBase;
-        a = next;
-    }
-    return floatBelow(static_cast<double>(reversed) * invBaseM);
+    double scale = 1.0;
+    for (int k = 0; k < digits; ++k) scale *= invBase;
+    return owenScrambledDigits(a, BaseDivider{uint32_t(base)}, digits, scale, permutation,
+                               dimensionHash);
 }
 
 }  // namespace pathlab

@@ -27,14 +27,18 @@
 //                  with the presentation's permutation.
 //   Owen         — nested scrambling: digit k becomes π_b((d_k + r) mod b)
 //                  where the rotation r is a hash of (seed, dimension, k and all
-//                  higher, already scrambled, digits) — Owen 1995's tree of
-//                  random permutations realised by hashing, as the presentation
-//                  and pbrt-v4's OwenScrambledRadicalInverse do.
+//                  higher digits) — Owen 1995's tree of random permutations
+//                  realised by hashing, as the presentation and pbrt-v4's
+//                  OwenScrambledRadicalInverse do. (They hash the higher digits
+//                  after scrambling; those name the same node of the tree, see
+//                  owenScrambledDigits.)
 // Past the kPrimeTableSize (1000) prime bases, dimensions wrap back to 2, as in
 // pbrt-v4; the Owen variant hashes the unwrapped dimension, so wrapped
 // dimensions still get fresh scrambles there.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <memory>
 #include <vector>
 
@@ -59,6 +63,26 @@ struct DigitPermutation {
     }
 };
 
+// Everything a scrambled radical inverse of tabulated dimension d needs,
+// gathered per seed so that a draw neither hashes the seed, nor looks up the
+// prime and its digit count, nor divides by the base (BaseDivider multiplies).
+struct HaltonDimension {
+    BaseDivider divider;
+    uint32_t base;
+    int digits;    // floatDigitCount(base)
+    double scale;  // base^-digits, rounded exactly as the digit loops compute it
+    const uint16_t* permutation;
+    const uint16_t* shifts;  // RandomDigit: s_k
+    // RandomDigit: once the index has no digits left, digits k… are zeros and
+    // the rest of the scrambled integer is the constant tail[k]; it joins the
+    // digits above it as reversed · power[k] + tail[k] (power[k] = base^(digits−k)).
+    const uint64_t* tail;
+    const uint64_t* power;
+    uint64_t owenHash;  // Owen: hashValues(seed, d, 0x4f57454e)
+    // Owen: the rotations of the root ([0]) and of its children ([1 + d_0]).
+    const uint16_t* rotations;
+};
+
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
     static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
@@ -66,7 +90,10 @@ struct HaltonDigitPermutations {
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
-    std::vector<uint16_t> shifts;  // kMaxDigits per base: the per-position digit shifts
+    std::vector<uint16_t> shifts;             // kMaxDigits per base: the per-position digit shifts
+    std::vector<uint64_t> tails, powers;      // kMaxDigits per tabulated base
+    std::vector<uint16_t> rotations;          // 1 + b per tabulated base
+    std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
         return {d < kTabulatedBases ? table.data() + offset[d] : nullptr,
@@ -124,6 +151,7 @@ class HaltonSamplerT {
     uint64_t seed_;
     HaltonImageMapping mapping_;
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
+    const HaltonDimension* dimensions_ = nullptr;  // permutations_->dimensions
     const int* primes_;
     Vec2i pixel_{-1, -1};
     int index_ = -1;
@@ -135,21 +163,127 @@ using HaltonSampler = HaltonSamplerT<HaltonScrambling::None>;
 using RandomDigitHaltonSampler = HaltonSamplerT<HaltonScrambling::RandomDigit>;
 using OwenHaltonSampler = HaltonSamplerT<HaltonScrambling::Owen>;
 
-// Digit-level helpers, exposed for tests.
+// The float nearest below v: rounding to nearest could lift a point sitting
+// just under a b-adic stratum boundary into the next stratum.
+// Branch-free, because whether rounding went up is a coin flip per point and
+// a mispredicted branch costs more than a digit. v ≥ 0, so when f > v, f > 0
+// and the next float towards 0 is one ulp less.
+inline float floatBelow(double v) {
+    const float f = static_cast<float>(v);
+    const uint32_t roundedUp = static_cast<double>(f) > v;
+    return std::min(std::bit_cast<float>(std::bit_cast<uint32_t>(f) - roundedUp), kOneMinusEpsilon);
+}
+
+// The rotation of the node of Owen's tree at depth k named by prefix (the
+// digits above it, d_0 … d_{k−1}, as the integer d_0·b^{k−1} + … + d_{k−1},
+// below 2^40 for every base's float digits): the hash's top 32 bits scaled to
+// [0, base) (Lemire's multiply-shift range reduction, no division).
+inline uint32_t owenRotation(uint64_t dimensionHash, int k, uint64_t prefix, uint32_t base) {
+    const uint64_t node = mixBits(dimensionHash ^ (prefix | uint64_t(k) << 56));
+    return uint32_t(((node >> 32) * base) >> 32);
+}
+
+// Owen scrambling of a's first `digits` base-b digits (b = divider.base): digit k
+// becomes permutation((d_k + r) mod b) with the rotation r hashed from
+// (dimensionHash, k, d_0 … d_{k−1}) — the node of Owen's tree the point lies
+// in, so points sharing their first k digits share digit k's permutation and
+// b-adic strata map to b-adic strata. The node is named by the input digits
+// above k; given the seed they determine the scrambled ones and vice versa,
+// so this is the same tree as hashing the scrambled digits (pbrt-v4), but no
+// digit's hash waits for the digit above it to be scrambled.
+template <typename Permutation>
+float owenScrambledDigits(uint64_t a, const BaseDivider& divider, int digits, double scale,
+                          Permutation permutation, uint64_t dimensionHash) {
+    const auto base = uint32_t(divider.base);
+    uint64_t reversed = 0, prefix = 0;
+    for (int k = 0; k < digits; ++k) {
+        const uint64_t next = divider.quotient(a);
+        const auto digit = uint32_t(a - next * base);
+        uint32_t rotated = digit + owenRotation(dimensionHash, k, prefix, base);
+        if (rotated >= base) rotated -= base;
+        reversed = reversed * base + permutation(rotated);
+        prefix = prefix * base + digit;
+        a = next;
+    }
+    return floatBelow(static_cast<double>(reversed) * scale);
+}
+
+// Digit-level reference implementations for any base (also the path for the
+// untabulated dimensions), exposed for tests.
 float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                          const uint16_t* shifts);
 float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                   uint64_t dimensionHash);
 
+// The two scramblers for a tabulated dimension (the samplers' hot path),
+// bit-identical to the digit loops above (tested). Indices from 2^32 on, where
+// BaseDivider needs a true division, take those loops.
+inline float randomDigitScrambled(const HaltonDimension& t, uint64_t a) {
+    if (a >> 32)
+        return randomDigitScrambledRadicalInverse(int(t.base), a, {t.permutation, 0, t.base},
+                                                  t.shifts);
+    uint64_t reversed = 0;
+    int k = 0;
+    // Once a has no digits left, the rest are zeros: their scrambled value is tail[k].
+    for (; a != 0 && k < t.digits; ++k) {
+        const uint64_t next = t.divider.quotient32(a);
+        uint32_t digit = uint32_t(a - next * t.base) + t.shifts[k];  // both below base
+        if (digit >= t.base) digit -= t.base;
+        reversed = reversed * t.base + t.permutation[digit];
+        a = next;
+    }
+    reversed = reversed * t.power[k] + t.tail[k];
+    return floatBelow(static_cast<double>(reversed) * t.scale);
+}
+inline float owenScrambled(const HaltonDimension& t, uint64_t a) {
+    if (a >> 32)
+        return owenScrambledRadicalInverse(int(t.base), a, {t.permutation, 0, t.base}, t.owenHash);
+    // Digits 0 and 1: the rotations of the root and of its b children are
+    // tabulated (the same hashes, computed once per seed).
+    const uint32_t base = t.base;
+    const auto rotate = [base](uint32_t digit, uint32_t rotation) {
+        const uint32_t rotated = digit + rotation;
+        return rotated >= base ? rotated - base : rotated;
+    };
+    uint64_t next = t.divider.quotient32(a);
+    const auto d0 = uint32_t(a - next * base);
+    a = next;
+    next = t.divider.quotient32(a);
+    const auto d1 = uint32_t(a - next * base);
+    a = next;
+    uint64_t reversed = uint64_t(t.permutation[rotate(d0, t.rotations[0])]) * base +
+                        t.permutation[rotate(d1, t.rotations[1 + d0])];
+    uint64_t prefix = uint64_t(d0) * base + d1;
+    for (int k = 2; k < t.digits; ++k) {
+        next = t.divider.quotient32(a);
+        const auto digit = uint32_t(a - next * base);
+        reversed = reversed * base +
+                   t.permutation[rotate(digit, owenRotation(t.owenHash, k, prefix, base))];
+        prefix = prefix * base + digit;
+        a = next;
+    }
+    return floatBelow(static_cast<double>(reversed) * t.scale);
+}
+
 template <HaltonScrambling kScrambling>
 HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
     : spp_(c.samplesPerPixel), seed_(c.seed), mapping_(c.resolution), primes_(primeTable()) {
-    if constexpr (kScrambling != HaltonScrambling::None)
+    if constexpr (kScrambling != HaltonScrambling::None) {
         permutations_ = haltonDigitPermutations(c.seed);
+        dimensions_ = permutations_->dimensions.data();
+    }
 }
 
 template <HaltonScrambling kScrambling>
 float HaltonSamplerT<kScrambling>::sampleDimension(int d) const {
+    if constexpr (kScrambling != HaltonScrambling::None) {
+        if (unsigned(d) < unsigned(HaltonDigitPermutations::kTabulatedBases)) {
+            if constexpr (kScrambling == HaltonScrambling::RandomDigit)
+                return randomDigitScrambled(dimensions_[d], haltonIndex_);
+            else
+                return owenScrambled(dimensions_[d], haltonIndex_);
+        }
+    }
     const int wrapped = d < kPrimeTableSize ? d : 2 + (d - 2) % (kPrimeTableSize - 2);
     const int base = primes_[wrapped];
     if constexpr (kScrambling == HaltonScrambling::None) {

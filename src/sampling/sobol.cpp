@@ -1,6 +1,7 @@
 #include "sampling/sobol.h"
 
 #include <stdexcept>
+#include <vector>
 
 namespace pathlab {
 namespace {
@@ -64,13 +65,24 @@ ZSobolSampler::ZSobolSampler(const SamplerConfig& c)
     log2Spp_ = log2Ceil(uint64_t(std::max(1, c.samplesPerPixel)));
     const int log2Resolution = log2Ceil(uint64_t(std::max({1, c.resolution.x, c.resolution.y})));
     base4Digits_ = log2Resolution + (log2Spp_ + 1) / 2;
+    static const std::vector<uint32_t> bytes = [matrices = matrices_] {
+        std::vector<uint32_t> t(3 * 256);
+        for (int byte = 0; byte < 3; ++byte)
+            for (uint64_t v = 0; v < 256; ++v)
+                t[size_t(byte) * 256 + v] = reverseBits32(sobolBits(matrices, v << (8 * byte), 1));
+        return t;
+    }();
+    reversedSobol1Bytes_ = bytes.data();
+    for (int d = 0; d < kCachedDimensions; ++d) {
+        CachedDimension& cd = cache_[d];
+        cd.salt = hashValues(d, seed_, 0x5a4fu);
+        cd.seed1D = foldSeed(hashValues(d, seed_, 0x5a31u));
+        const uint64_t seeds = hashValues(d, seed_, 0x5a32u);
+        cd.seeds2D[0] = uint32_t(seeds), cd.seeds2D[1] = uint32_t(seeds >> 32);
+    }
 }
 
-uint64_t ZSobolSampler::sampleIndex(int dimension) const {
-    // The 24 permutations of {0,1,2,3}, as base-4 digits packed into a byte.
-    static constexpr uint8_t kPermutations[24] = {0xe4, 0xb4, 0xd8, 0x78, 0x9c, 0x6c, 0xe1, 0xb1,
-                                                  0xc9, 0x39, 0x8d, 0x2d, 0xd2, 0x72, 0xc6, 0x36,
-                                                  0x4e, 0x1e, 0x93, 0x63, 0x87, 0x27, 0x4b, 0x1b};
+uint64_t ZSobolSampler::referenceSampleIndex(int dimension) const {
     // With an odd power of two per pixel, the lowest "digit" is a single bit.
     const bool oddBits = log2Spp_ & 1;
     const uint64_t dimensionSalt = hashValues(dimension, seed_, 0x5a4fu);
@@ -79,11 +91,26 @@ uint64_t ZSobolSampler::sampleIndex(int dimension) const {
         const int shift = 2 * i - (oddBits ? 1 : 0);
         const unsigned digit = (mortonIndex_ >> shift) & 3;
         const uint64_t higherDigits = mortonIndex_ >> (shift + 2);
-        const unsigned perm = kPermutations[(mixBits(higherDigits ^ dimensionSalt) >> 24) % 24];
+        const unsigned perm =
+            zsobol::kDigitPermutations[(mixBits(higherDigits ^ dimensionSalt) >> 24) % 24];
         index |= uint64_t((perm >> (2 * digit)) & 3) << shift;
     }
     if (oddBits) index |= (mortonIndex_ & 1) ^ (mixBits((mortonIndex_ >> 1) ^ dimensionSalt) & 1);
     return index;
+}
+
+void ZSobolSampler::fillHighDigits(CachedDimension& c) const {
+    // The digits at or above bit log2Spp_ (digit boundaries fall on it for
+    // even and odd log2Spp_ alike) and the digits above them come from the
+    // pixel only.
+    const int odd = log2Spp_ & 1;
+    uint64_t index = 0;
+    for (int shift = 2 * (base4Digits_ - 1) - odd; shift >= log2Spp_; shift -= 2)
+        index |= uint64_t(zsobol::permuteDigit((mortonIndex_ >> shift) & 3,
+                                               mortonIndex_ >> (shift + 2), c.salt))
+                 << shift;
+    c.highIndex = index;
+    c.reversedSobol1High = reverseBits32(sobolBits(matrices_, index, 1));
 }
 
 }  // namespace pathlab

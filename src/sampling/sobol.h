@@ -145,6 +145,19 @@ class OwenSobolSampler {
     int dimension_ = 0;
 };
 
+namespace zsobol {
+// The 24 permutations of {0,1,2,3}, as base-4 digits packed into a byte.
+inline constexpr uint8_t kDigitPermutations[24] = {0xe4, 0xb4, 0xd8, 0x78, 0x9c, 0x6c, 0xe1, 0xb1,
+                                                   0xc9, 0x39, 0x8d, 0x2d, 0xd2, 0x72, 0xc6, 0x36,
+                                                   0x4e, 0x1e, 0x93, 0x63, 0x87, 0x27, 0x4b, 0x1b};
+// Base-4 digit `digit` of a Morton index, permuted by the permutation that the
+// digits above it (`higherDigits`) and the dimension's salt choose.
+inline unsigned permuteDigit(unsigned digit, uint64_t higherDigits, uint64_t salt) {
+    const unsigned perm = kDigitPermutations[(mixBits(higherDigits ^ salt) >> 24) % 24];
+    return (perm >> (2 * digit)) & 3;
+}
+}  // namespace zsobol
+
 // `zsobol`: Morton-ordered, base-4-digit-permuted, Owen-scrambled Sobol'.
 class ZSobolSampler {
   public:
@@ -153,30 +166,100 @@ class ZSobolSampler {
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
         mortonIndex_ = (encodeMorton2(uint32_t(p.x), uint32_t(p.y)) << log2Spp_) | uint64_t(index);
+        // The digits above the sample index's bits are the pixel's: their
+        // permuted values stay cached while those bits stay the same.
+        const uint64_t high = mortonIndex_ >> log2Spp_;
+        if (high != cachedHigh_) cachedHigh_ = high, cacheValid_ = 0;
         dimension_ = dim;
     }
     float get1D() {
-        const uint64_t index = sampleIndex(dimension_);
-        const uint32_t seed = foldSeed(hashValues(dimension_, seed_, 0x5a31u));
-        ++dimension_;
-        return fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), seed));
+        const int d = dimension_++;
+        if (d >= kCachedDimensions) {
+            const uint32_t seed = foldSeed(hashValues(d, seed_, 0x5a31u));
+            return fixedPointToFloat(
+                owenScramble(sobolBits(matrices_, referenceSampleIndex(d), 0), seed));
+        }
+        const CachedDimension& c = cached(d);
+        // Sobol' dimension 0 is the bit reversal, which owenScramble undoes:
+        // owenScramble(reverse(i), s) = reverse(laineKarras(i, s)).
+        const uint32_t index = uint32_t(c.highIndex | lowDigits(c.salt));
+        return fixedPointToFloat(reverseBits32(laineKarrasPermutation(index, c.seed1D)));
     }
     Vec2f get2D() {
-        const uint64_t index = sampleIndex(dimension_);
-        const uint64_t seeds = hashValues(dimension_, seed_, 0x5a32u);
+        const int d = dimension_;
         dimension_ += 2;
-        return {
-            fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), uint32_t(seeds))),
-            fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
+        if (d >= kCachedDimensions) {
+            const uint64_t index = referenceSampleIndex(d);
+            const uint64_t seeds = hashValues(d, seed_, 0x5a32u);
+            return {
+                fixedPointToFloat(owenScramble(sobolBits(matrices_, index, 0), uint32_t(seeds))),
+                fixedPointToFloat(
+                    owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
+        }
+        const CachedDimension& c = cached(d);
+        const uint64_t low = lowDigits(c.salt);
+        // Sobol' dimension 1 is linear over GF(2) and the high and low index
+        // bits are disjoint, so its value is the cached high part XOR the
+        // low part; both are kept bit-reversed, as owenScramble wants them.
+        // The low part a byte at a time from tables: a loop over its set bits
+        // would end at an unpredictable count.
+        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
+                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
+                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
+        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
+        return {fixedPointToFloat(reverseBits32(
+                    laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]))),
+                fixedPointToFloat(reverseBits32(laineKarrasPermutation(reversed1, c.seeds2D[1])))};
     }
     Vec2f getPixel2D() { return get2D(); }
 
     // The permuted global index for the current pixel sample in `dimension`
     // (Ahmed & Wonka 2020, §4: random permutation of each base-4 digit chosen
-    // by the digits above it).
-    uint64_t sampleIndex(int dimension) const;
+    // by the digits above it), computed digit by digit from the top. The
+    // draws compute the same value from a per-pixel cache (tested bit-identical).
+    uint64_t referenceSampleIndex(int dimension) const;
+    // The value the draws use.
+    uint64_t sampleIndex(int dimension) {
+        if (dimension >= kCachedDimensions) return referenceSampleIndex(dimension);
+        const CachedDimension& c = cached(dimension);
+        return c.highIndex | lowDigits(c.salt);
+    }
 
   private:
+    // A path of depth 8 draws 58 dimensions; deeper ones are computed uncached.
+    static constexpr int kCachedDimensions = 64;
+    struct CachedDimension {
+        // Per dimension, for every pixel: the digit hashes' salt and the Owen seeds.
+        uint64_t salt = 0;
+        uint32_t seed1D = 0;
+        uint32_t seeds2D[2] = {0, 0};
+        // Per pixel: the permuted digits above the sample-index bits and the
+        // (bit-reversed) Sobol' dimension 1 of them.
+        uint64_t highIndex = 0;
+        uint32_t reversedSobol1High = 0;
+    };
+    const CachedDimension& cached(int d) {
+        CachedDimension& c = cache_[size_t(d)];
+        if (!((cacheValid_ >> d) & 1)) {
+            fillHighDigits(c);
+            cacheValid_ |= uint64_t(1) << d;
+        }
+        return c;
+    }
+    void fillHighDigits(CachedDimension& c) const;
+    // The permuted digits below the pixel's: the ⌈log2 spp / 2⌉ digits that
+    // change from sample to sample (same loop as referenceSampleIndex's).
+    uint64_t lowDigits(uint64_t salt) const {
+        const int odd = log2Spp_ & 1;
+        uint64_t index = 0;
+        for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2)
+            index |= uint64_t(zsobol::permuteDigit((mortonIndex_ >> shift) & 3,
+                                                   mortonIndex_ >> (shift + 2), salt))
+                     << shift;
+        if (odd) index |= (mortonIndex_ & 1) ^ (mixBits((mortonIndex_ >> 1) ^ salt) & 1);
+        return index;
+    }
+
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
@@ -184,6 +267,12 @@ class ZSobolSampler {
     int base4Digits_ = 0;
     uint64_t mortonIndex_ = 0;
     int dimension_ = 0;
+    uint64_t cachedHigh_ = ~uint64_t(0);
+    uint64_t cacheValid_ = 0;  // bit d: cache_[d]'s per-pixel part is current
+    // Bit-reversed Sobol' dimension 1 of every value of index bits 0–7, 8–15
+    // and 16–23 (the renderer's spp ≤ 2^24): three tables of 256.
+    const uint32_t* reversedSobol1Bytes_;
+    CachedDimension cache_[kCachedDimensions];
 };
 
 }  // namespace pathlab

@@ -1,0 +1,169 @@
+// The digit-level fast paths of the Halton and ZSobol samplers against the
+// digit-by-digit definitions they must reproduce.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <set>
+#include <vector>
+
+#include "core/rng.h"
+#include "sampling/halton.h"
+#include "sampling/sobol.h"
+
+namespace pathlab {
+namespace {
+
+uint32_t bits(float f) {
+    return std::bit_cast<uint32_t>(f);
+}
+
+// Indices a Halton sampler meets, and harder ones: small, around 2^32 (where
+// BaseDivider switches to a true division) and with more digits than a float keeps.
+std::vector<uint64_t> haltonIndices() {
+    std::vector<uint64_t> v;
+    for (uint64_t a = 0; a < 2000; ++a) v.push_back(a);
+    Pcg32 rng(17, 3);
+    for (int i = 0; i < 3000; ++i) {
+        const uint64_t hi = rng.nextUInt(), lo = rng.nextUInt();
+        v.push_back(lo >> rng.nextUInt(32));
+        v.push_back(((hi << 32) | lo) >> (24 + rng.nextUInt(24)));
+    }
+    for (uint64_t a : {0xffffffffULL, 0x100000000ULL, 0x100000001ULL, 0xffffffffffffULL})
+        v.push_back(a);
+    return v;
+}
+
+TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
+    const int* primes = primeTable();
+    const auto indices = haltonIndices();
+    for (uint64_t seed : {0, 5}) {
+        const auto perms = haltonDigitPermutations(seed);
+        ASSERT_EQ(perms->dimensions.size(), size_t(HaltonDigitPermutations::kTabulatedBases));
+        for (int d = 0; d < HaltonDigitPermutations::kTabulatedBases; ++d) {
+            const int base = primes[d];
+            const DigitPermutation perm = perms->forDimension(d, base);
+            const uint64_t owenHash = hashValues(seed, d, 0x4f57454eu);
+            for (uint64_t a : indices) {
+                ASSERT_EQ(bits(randomDigitScrambled(perms->dimensions[size_t(d)], a)),
+                          bits(randomDigitScrambledRadicalInverse(base, a, perm,
+                                                                  perms->shiftsForDimension(d))))
+                    << "base " << base << " index " << a;
+                ASSERT_EQ(bits(owenScrambled(perms->dimensions[size_t(d)], a)),
+                          bits(owenScrambledRadicalInverse(base, a, perm, owenHash)))
+                    << "base " << base << " index " << a;
+            }
+        }
+    }
+}
+
+TEST(HaltonDigits, SamplersDrawTheDigitLoopsValues) {
+    // Across the end of the tables (128 dimensions) and for pixels of a real image.
+    const int* primes = primeTable();
+    const SamplerConfig config{16, 9, {40, 30}};
+    RandomDigitHaltonSampler rd(config);
+    OwenHaltonSampler owen(config);
+    const HaltonImageMapping mapping(config.resolution);
+    const auto perms = haltonDigitPermutations(config.seed);
+    for (Vec2i p : {Vec2i{0, 0}, Vec2i{39, 29}, Vec2i{17, 4}})
+        for (int i = 0; i < 16; i += 5)
+            for (int d = 2; d < 140; ++d) {
+                const uint64_t a = mapping.index(p, i);
+                const DigitPermutation perm = perms->forDimension(d, primes[d]);
+                rd.startPixelSample(p, i, d);
+                owen.startPixelSample(p, i, d);
+                ASSERT_EQ(bits(rd.get1D()), bits(randomDigitScrambledRadicalInverse(
+                                                primes[d], a, perm, perms->shiftsForDimension(d))))
+                    << "dim " << d;
+                ASSERT_EQ(bits(owen.get1D()),
+                          bits(owenScrambledRadicalInverse(
+                              primes[d], a, perm, hashValues(config.seed, d, 0x4f57454eu))))
+                    << "dim " << d;
+            }
+}
+
+// Digit k (0 = most significant) of x in base b.
+int digitOf(float x, int b, int k) {
+    double v = x;
+    for (int i = 0; i < k; ++i) v = v * b - std::floor(v * b);
+    return int(std::floor(v * b));
+}
+
+TEST(HaltonDigits, OwenPermutesEachDigitByItsOwnNode) {
+    // Owen's nested scrambling: the second digit's permutation depends on the
+    // first digit (the node), so the b nodes below the root do not all use
+    // the same permutation — which is what tells it from a per-position
+    // (random-digit) scramble, where they all do.
+    const int* primes = primeTable();
+    const auto perms = haltonDigitPermutations(3);
+    for (int d = 2; d < 8; ++d) {
+        const int b = primes[d];
+        const DigitPermutation perm = perms->forDimension(d, b);
+        std::set<std::vector<int>> owenMaps, rdMaps;
+        for (int first = 0; first < b; ++first) {
+            std::vector<int> owenMap, rdMap;
+            std::set<int> owenFirst;
+            for (int second = 0; second < b; ++second) {
+                const uint64_t a = uint64_t(first) + uint64_t(b) * second;
+                const float x = owenScrambledRadicalInverse(
+                    b, a, perm, hashValues(uint64_t(3), d, 0x4f57454eu));
+                owenFirst.insert(digitOf(x, b, 0));
+                owenMap.push_back(digitOf(x, b, 1));
+                rdMap.push_back(digitOf(
+                    randomDigitScrambledRadicalInverse(b, a, perm, perms->shiftsForDimension(d)), b,
+                    1));
+            }
+            // Within the node: the first digit is shared, the second a bijection.
+            EXPECT_EQ(owenFirst.size(), 1u);
+            EXPECT_EQ(std::set<int>(owenMap.begin(), owenMap.end()).size(), size_t(b));
+            owenMaps.insert(owenMap);
+            rdMaps.insert(rdMap);
+        }
+        EXPECT_EQ(rdMaps.size(), 1u) << "base " << b;
+        EXPECT_GT(owenMaps.size(), 1u) << "base " << b;
+    }
+}
+
+TEST(ZSobolDigits, CachedIndexAndDrawsMatchTheDigitByDigitReference) {
+    const uint32_t* matrices = sobolMatrices();
+    for (int spp : {1, 2, 3, 4, 8, 16, 32, 48, 64, 128, 256, 1024, 1 << 20, (1 << 25) + 3})
+        for (Vec2i res : {Vec2i{1, 1}, Vec2i{5, 3}, Vec2i{64, 64}, Vec2i{512, 384}})
+            for (uint64_t seed : {0, 11}) {
+                ZSobolSampler s(SamplerConfig{spp, seed, res});
+                Pcg32 rng(uint64_t(spp) * 1000 + uint64_t(res.x) + seed, 1);
+                Vec2i pixel{0, 0};
+                for (int step = 0; step < 300; ++step) {
+                    // Mostly stay in one pixel, as the renderer does; sometimes
+                    // jump, sometimes to a pixel seen before.
+                    const uint32_t r = rng.nextUInt(8);
+                    if (r == 0)
+                        pixel = {int(rng.nextUInt(uint32_t(res.x))),
+                                 int(rng.nextUInt(uint32_t(res.y)))};
+                    else if (r == 1)
+                        pixel = {res.x - 1, res.y - 1};
+                    const int index = int(rng.nextUInt(uint32_t(spp)));
+                    const int d = int(rng.nextUInt(72));  // past the 64 cached dimensions
+                    s.startPixelSample(pixel, index, d);
+                    const uint64_t reference = s.referenceSampleIndex(d);
+                    ASSERT_EQ(s.sampleIndex(d), reference)
+                        << "spp " << spp << " pixel " << pixel.x << "," << pixel.y << " index "
+                        << index << " dim " << d;
+                    if (rng.nextUInt(2)) {
+                        const uint32_t seed1 = foldSeed(hashValues(d, seed, 0x5a31u));
+                        ASSERT_EQ(bits(s.get1D()), bits(fixedPointToFloat(owenScramble(
+                                                       sobolBits(matrices, reference, 0), seed1))));
+                    } else {
+                        const uint64_t seeds = hashValues(d, seed, 0x5a32u);
+                        const Vec2f u = s.get2D();
+                        ASSERT_EQ(bits(u.x),
+                                  bits(fixedPointToFloat(owenScramble(
+                                      sobolBits(matrices, reference, 0), uint32_t(seeds)))));
+                        ASSERT_EQ(bits(u.y),
+                                  bits(fixedPointToFloat(owenScramble(
+                                      sobolBits(matrices, reference, 1), uint32_t(seeds >> 32)))));
+                    }
+                }
+            }
+}
+
+}  // namespace
+}  // namespace pathlab
