@@ -63,7 +63,8 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
     const int spp = sampler.samplesPerPixel();
     const Clock::time_point start = checkpoints.timed ? Clock::now() : Clock::time_point{};
     double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
-    size_t next = 0;  // the next checkpoint
+    uint64_t nonFinite = 0;  // this pixel's, so far
+    size_t next = 0;         // the next checkpoint
     // The pixel's camera rays are nearly parallel: trace them as packets.
     for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
         const int count = std::min(kPacketWidth, spp - i0);
@@ -82,7 +83,7 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
             Vec3f L = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k], sampler,
                                        pixel, i0 + k, integrator, result.counters);
             if (!isFinite(L)) {  // never let a NaN/Inf reach the image
-                ++result.nonFinite;
+                ++nonFinite;
                 L = Vec3f(0.0f);
             }
             for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
@@ -91,13 +92,14 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
             // that stops here.
             writePixel(sum, sumSq, i0 + k + 1, pixel, *checkpoints.image[next],
                        *checkpoints.variance[next]);
-            result.nonFiniteAt[next] += result.nonFinite;
+            result.nonFiniteAt[next] += nonFinite;
             if (checkpoints.timed)
                 result.secondsAt[next] +=
                     std::chrono::duration<double>(Clock::now() - start).count();
             ++next;
         }
     }
+    result.nonFinite += nonFinite;
 }
 
 template <Sampler S>
@@ -108,12 +110,8 @@ TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& 
     result.nonFiniteAt.assign(checkpoints.spp.size(), 0);
     result.secondsAt.assign(checkpoints.spp.size(), 0.0);
     for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; ++x) {
-            const uint64_t before = result.nonFinite;
-            result.nonFinite = 0;  // per pixel while it renders
+        for (int x = tile.x0; x < tile.x1; ++x)
             renderPixel(scene, camera, sampler, Vec2i{x, y}, integrator, checkpoints, result);
-            result.nonFinite += before;
-        }
     return result;
 }
 
@@ -230,11 +228,9 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         out.stats.shadowRays += r.counters.shadowRays;
         out.stats.dimensions += r.counters.dimensions;
         out.stats.nonFinite += r.nonFinite;
-        for (size_t k = 0; k < out.prefixes.size(); ++k) {
+        for (size_t k = 0; k < pixelSeconds.size(); ++k) pixelSeconds[k] += r.secondsAt[k];
+        for (size_t k = 0; k < out.prefixes.size(); ++k)
             out.prefixes[k].nonFinite += r.nonFiniteAt[k];
-            pixelSeconds[k] += r.secondsAt[k];
-        }
-        pixelSeconds.back() += r.secondsAt.back();
     }
     out.stats.paths = uint64_t(res.x) * uint64_t(res.y) * uint64_t(settings.samplesPerPixel);
     out.stats.seconds =
