@@ -64,10 +64,7 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
             power[k] = power[k + 1] * uint64_t(base);
             tail[k] = perm[shift[k]] * power[k + 1] + tail[k + 1];  // digit 0 ↦ π_b(s_k)
         }
-        // The same product of rounded 1/b the digit loops form.
-        const double invBase = 1.0 / base;
-        double scale = 1.0;
-        for (int k = 0; k < digits; ++k) scale *= invBase;
+        const double scale = inverseBasePower(base, digits);
         const uint64_t owenHash = hashValues(seed, d, 0x4f57454eu);
         uint16_t* rotation = rotations.data() + offset[d] + d;
         rotation[0] = uint16_t(owenRotation(owenHash, 0, 0, uint32_t(base)));
@@ -132,28 +129,21 @@ float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation 
     // last non-zero digit, which would leave point 0 and short indices fixed).
     const int digits = floatDigitCount(base);
     const BaseDivider divider{uint32_t(base)};
-    const double invBase = 1.0 / base;
-    double invBaseM = 1.0;
     uint64_t reversed = 0;
     for (int k = 0; k < digits; ++k) {
         const uint64_t next = divider.quotient(a);
-        uint32_t digit = uint32_t(a - next * base) + shifts[k];  // both below base
-        if (digit >= uint32_t(base)) digit -= uint32_t(base);
-        reversed = reversed * base + permutation(digit);
-        invBaseM *= invBase;
+        const auto digit = uint32_t(a - next * base);
+        reversed = reversed * base + permutation(rotateDigit(digit, shifts[k], uint32_t(base)));
         a = next;
     }
-    return floatBelow(static_cast<double>(reversed) * invBaseM);
+    return floatBelow(static_cast<double>(reversed) * inverseBasePower(base, digits));
 }
 
 float owenScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,
                                   uint64_t dimensionHash) {
     const int digits = floatDigitCount(base);
-    const double invBase = 1.0 / base;
-    double scale = 1.0;
-    for (int k = 0; k < digits; ++k) scale *= invBase;
-    return owenScrambledDigits(a, BaseDivider{uint32_t(base)}, digits, scale, permutation,
-                               dimensionHash);
+    return owenScrambledDigits(a, BaseDivider{uint32_t(base)}, digits,
+                               inverseBasePower(base, digits), permutation, dimensionHash);
 }
 
 }  // namespace pathlab

@@ -174,6 +174,12 @@ inline float floatBelow(double v) {
     return std::min(std::bit_cast<float>(std::bit_cast<uint32_t>(f) - roundedUp), kOneMinusEpsilon);
 }
 
+// (digit + rotation) mod base, for digit and rotation both below base.
+inline uint32_t rotateDigit(uint32_t digit, uint32_t rotation, uint32_t base) {
+    const uint32_t rotated = digit + rotation;
+    return rotated >= base ? rotated - base : rotated;
+}
+
 // The rotation of the node of Owen's tree at depth k named by prefix (the
 // digits above it, d_0 … d_{k−1}, as the integer d_0·b^{k−1} + … + d_{k−1},
 // below 2^40 for every base's float digits): the hash's top 32 bits scaled to
@@ -199,13 +205,22 @@ float owenScrambledDigits(uint64_t a, const BaseDivider& divider, int digits, do
     for (int k = 0; k < digits; ++k) {
         const uint64_t next = divider.quotient(a);
         const auto digit = uint32_t(a - next * base);
-        uint32_t rotated = digit + owenRotation(dimensionHash, k, prefix, base);
-        if (rotated >= base) rotated -= base;
-        reversed = reversed * base + permutation(rotated);
+        reversed =
+            reversed * base +
+            permutation(rotateDigit(digit, owenRotation(dimensionHash, k, prefix, base), base));
         prefix = prefix * base + digit;
         a = next;
     }
     return floatBelow(static_cast<double>(reversed) * scale);
+}
+
+// base^-digits as the product of `digits` rounded 1/base — the value every
+// digit loop scales its scrambled integer by.
+inline double inverseBasePower(int base, int digits) {
+    const double invBase = 1.0 / base;
+    double scale = 1.0;
+    for (int k = 0; k < digits; ++k) scale *= invBase;
+    return scale;
 }
 
 // Digit-level reference implementations for any base (also the path for the
@@ -227,9 +242,8 @@ inline float randomDigitScrambled(const HaltonDimension& t, uint64_t a) {
     // Once a has no digits left, the rest are zeros: their scrambled value is tail[k].
     for (; a != 0 && k < t.digits; ++k) {
         const uint64_t next = t.divider.quotient32(a);
-        uint32_t digit = uint32_t(a - next * t.base) + t.shifts[k];  // both below base
-        if (digit >= t.base) digit -= t.base;
-        reversed = reversed * t.base + t.permutation[digit];
+        const auto digit = uint32_t(a - next * t.base);
+        reversed = reversed * t.base + t.permutation[rotateDigit(digit, t.shifts[k], t.base)];
         a = next;
     }
     reversed = reversed * t.power[k] + t.tail[k];
@@ -241,24 +255,21 @@ inline float owenScrambled(const HaltonDimension& t, uint64_t a) {
     // Digits 0 and 1: the rotations of the root and of its b children are
     // tabulated (the same hashes, computed once per seed).
     const uint32_t base = t.base;
-    const auto rotate = [base](uint32_t digit, uint32_t rotation) {
-        const uint32_t rotated = digit + rotation;
-        return rotated >= base ? rotated - base : rotated;
-    };
     uint64_t next = t.divider.quotient32(a);
     const auto d0 = uint32_t(a - next * base);
     a = next;
     next = t.divider.quotient32(a);
     const auto d1 = uint32_t(a - next * base);
     a = next;
-    uint64_t reversed = uint64_t(t.permutation[rotate(d0, t.rotations[0])]) * base +
-                        t.permutation[rotate(d1, t.rotations[1 + d0])];
+    uint64_t reversed = uint64_t(t.permutation[rotateDigit(d0, t.rotations[0], base)]) * base +
+                        t.permutation[rotateDigit(d1, t.rotations[1 + d0], base)];
     uint64_t prefix = uint64_t(d0) * base + d1;
     for (int k = 2; k < t.digits; ++k) {
         next = t.divider.quotient32(a);
         const auto digit = uint32_t(a - next * base);
-        reversed = reversed * base +
-                   t.permutation[rotate(digit, owenRotation(t.owenHash, k, prefix, base))];
+        reversed =
+            reversed * base +
+            t.permutation[rotateDigit(digit, owenRotation(t.owenHash, k, prefix, base), base)];
         prefix = prefix * base + digit;
         a = next;
     }

@@ -90,10 +90,8 @@ uint64_t ZSobolSampler::referenceSampleIndex(int dimension) const {
     for (int i = base4Digits_ - 1; i >= (oddBits ? 1 : 0); --i) {
         const int shift = 2 * i - (oddBits ? 1 : 0);
         const unsigned digit = (mortonIndex_ >> shift) & 3;
-        const uint64_t higherDigits = mortonIndex_ >> (shift + 2);
-        const unsigned perm =
-            zsobol::kDigitPermutations[(mixBits(higherDigits ^ dimensionSalt) >> 24) % 24];
-        index |= uint64_t((perm >> (2 * digit)) & 3) << shift;
+        index |= uint64_t(zsobol::permuteDigit(digit, mortonIndex_ >> (shift + 2), dimensionSalt))
+                 << shift;
     }
     if (oddBits) index |= (mortonIndex_ & 1) ^ (mixBits((mortonIndex_ >> 1) ^ dimensionSalt) & 1);
     return index;
