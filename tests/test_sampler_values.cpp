@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "render/path_integrator.h"
 #include "sampler_test_util.h"
 #include "sampling/lowdiscrepancy.h"
 
@@ -166,6 +167,68 @@ TEST(SamplerValues, SamplesDoNotDependOnWhatWasDrawnBefore) {
                 EXPECT_EQ(u, t.get1D()) << name;
             },
             a);
+    }
+}
+
+TEST(SamplerValues, VertexDrawsSkipDimensionsWithoutChangingThem) {
+    // A path vertex draws only the dimensions it uses (VertexDimensions in the
+    // integrator); each must be the value drawing the vertex's whole block in
+    // order gives, whichever draws were skipped before it.
+    struct Pattern {
+        bool choice, light, lobe, direction, roulette;
+    };
+    const Pattern patterns[] = {{false, true, false, true, true},     // diffuse, one light
+                                {true, true, false, true, false},     // before roulette
+                                {false, false, true, false, true},    // glass
+                                {false, false, false, false, true}};  // mirror
+    for (const std::string& name : allSamplerNames()) {
+        const AnySampler prototype = makeSampler(name, SamplerConfig{8, 2, {8, 8}});
+        AnySampler whole = prototype, skipping = prototype;
+        std::visit(
+            [&](auto& s) {
+                using S = std::decay_t<decltype(s)>;
+                auto& t = std::get<S>(skipping);
+                for (const Pattern& use : patterns)
+                    for (int depth : {0, 3})
+                        for (int index : {0, 5}) {
+                            s.startPixelSample({3, 1}, index, dims::bounceBase(depth));
+                            const float choice = s.get1D();
+                            const Vec2f light = s.get2D();
+                            const float lobe = s.get1D();
+                            const Vec2f direction = s.get2D();
+                            const float roulette = s.get1D();
+
+                            PathCounters counters;
+                            VertexDimensions<S> draws(t, {3, 1}, index, depth, counters);
+                            uint64_t drawn = 0;
+                            if (use.choice) {
+                                EXPECT_EQ(draws.get1D(dims::kLightChoice), choice) << name;
+                                drawn += 1;
+                            }
+                            if (use.light) {
+                                const Vec2f u = draws.get2D(dims::kLightPoint);
+                                EXPECT_EQ(u.x, light.x) << name;
+                                EXPECT_EQ(u.y, light.y) << name;
+                                drawn += 2;
+                            }
+                            if (use.lobe) {
+                                EXPECT_EQ(draws.get1D(dims::kBsdfLobe), lobe) << name;
+                                drawn += 1;
+                            }
+                            if (use.direction) {
+                                const Vec2f u = draws.get2D(dims::kBsdfDirection);
+                                EXPECT_EQ(u.x, direction.x) << name;
+                                EXPECT_EQ(u.y, direction.y) << name;
+                                drawn += 2;
+                            }
+                            if (use.roulette) {
+                                EXPECT_EQ(draws.get1D(dims::kRoulette), roulette) << name;
+                                drawn += 1;
+                            }
+                            EXPECT_EQ(counters.dimensions, drawn) << name;
+                        }
+            },
+            whole);
     }
 }
 

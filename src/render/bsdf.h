@@ -22,7 +22,7 @@ struct BsdfSample {
 enum class BsdfKind { Diffuse, Mirror, Dielectric, Conductor };
 
 class Bsdf {
-public:
+  public:
     static Bsdf diffuse(Vec3f albedo);
     static Bsdf mirror(Vec3f reflectance);
     static Bsdf dielectric(float eta);
@@ -31,6 +31,11 @@ public:
     BsdfKind kind() const { return kind_; }
     // True when every lobe is a Dirac delta: next-event estimation cannot help.
     bool isSpecular() const;
+    // Which of sample()'s random numbers it reads: the lobe choice only at
+    // glass, the direction only where some lobe is not a delta. The integrator
+    // draws no others.
+    bool usesLobeSample() const { return kind_ == BsdfKind::Dielectric; }
+    bool usesDirectionSample() const { return !isSpecular(); }
 
     Vec3f f(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
@@ -38,9 +43,9 @@ public:
     // chooses the direction within the lobe.
     std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
 
-private:
+  private:
     BsdfKind kind_ = BsdfKind::Diffuse;
-    Vec3f color_{0.0f};      // albedo / reflectance
+    Vec3f color_{0.0f};       // albedo / reflectance
     Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index
     float alpha_ = 0;
 };

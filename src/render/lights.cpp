@@ -177,8 +177,9 @@ bool hasNormal(Vec3f ns) {
 
 // The light as a spherical rectangle seen from ref, when it is sampled by solid
 // angle there; nothing when area sampling applies.
+// Callers test l.solidAngleSampling first, so that area sampling (the default)
+// makes no call and builds no optional rectangle per light sample.
 std::optional<SphericalRectangle> solidAngleView(const AreaLight& l, Vec3f ref) {
-    if (!l.solidAngleSampling) return std::nullopt;
     const SphericalRectangle rect(l, ref);
     if (!rect.usable(l)) return std::nullopt;
     return rect;
@@ -210,7 +211,7 @@ Vec3f AreaLight::samplePoint(Vec2f u) const {
 std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
                                                                 Vec2f u) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
-    if (const auto rect = solidAngleView(*this, ref)) {
+    if (const auto rect = solidAngleSampling ? solidAngleView(*this, ref) : std::nullopt) {
         float pdf = float(1 / rect->solidAngle);
         if (hasNormal(ns)) {
             float w[4];
@@ -231,7 +232,7 @@ std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f
 
 float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return 0;
-    if (const auto rect = solidAngleView(*this, ref)) {
+    if (const auto rect = solidAngleSampling ? solidAngleView(*this, ref) : std::nullopt) {
         float pdf = float(1 / rect->solidAngle);
         if (hasNormal(ns)) {
             float w[4];
@@ -242,10 +243,6 @@ float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
         return pdf;
     }
     return areaDensity(*this, ref, p);
-}
-
-Vec3f AreaLight::emitted(Vec3f w) const {
-    return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f);
 }
 
 LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling strategy)

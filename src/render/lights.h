@@ -60,7 +60,7 @@ struct AreaLight {
     // (p on the light, seen from ref on its emitting side).
     float pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const;
     // Emitted radiance towards direction w (pointing away from the light).
-    Vec3f emitted(Vec3f w) const;
+    Vec3f emitted(Vec3f w) const { return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f); }
 };
 
 struct LightSample {
@@ -83,9 +83,10 @@ class LightSet {
     int lightOfTriangle(unsigned mesh, unsigned triangle) const;
 
     // A light sample for the receiver at `ref` with shading normal `ns` (the zero
-    // vector when there is none). uChoice picks the light; it is read even when
-    // there is one light, so the dimension layout never depends on the scene.
+    // vector when there is none). uChoice picks the light.
     std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
+    // False when there is at most one light to choose: uChoice is then never read.
+    bool choiceUsesSample() const { return cdf_.size() > 1; }
     // Solid-angle pdf (with choice probability) with which sample(ref, ns, …)
     // reaches point p of light `light` — for MIS when a BSDF sample hits the
     // light. ref and ns must be those the light sample would have used.

@@ -4,9 +4,13 @@
 // maximum depth counted as pbrt-v4 does (1 = direct lighting only).
 //
 // Every random number comes from the sampler, in the fixed layout of
-// sampling/sampler.h: at path vertex `depth` the sampler restarts at
+// sampling/sampler.h: vertex `depth` owns the block of dimensions starting at
 // dims::bounceBase(depth), so a bounce's dimensions never depend on what earlier
-// bounces drew (specular vertices still consume their light dimensions).
+// bounces drew. A vertex draws only the dimensions it uses (no light choice with
+// one light, no lobe choice off glass, no light sample at a specular vertex, no
+// roulette before it starts) and skips the others: a sampler's value is a pure
+// function of (pixel, index, dimension, seed), so skipping changes no value that
+// is drawn — it only saves computing those that would be thrown away.
 #pragma once
 
 #include <limits>
@@ -29,6 +33,40 @@ struct PathCounters {
     uint64_t rays = 0;        // closest-hit rays: camera and bounce
     uint64_t shadowRays = 0;  // visibility rays of next-event estimation
     uint64_t dimensions = 0;  // sampler dimensions drawn (a 2D draw counts 2)
+};
+
+// The draws of one path vertex, by their offset in the vertex's block of
+// dimensions (dims::kLightChoice …). The sampler is repositioned only when a
+// draw does not follow the previous one.
+template <Sampler S>
+class VertexDimensions {
+  public:
+    VertexDimensions(S& sampler, Vec2i pixel, int sampleIndex, int depth, PathCounters& counters)
+        : sampler_(sampler),
+          pixel_(pixel),
+          index_(sampleIndex),
+          base_(dims::bounceBase(depth)),
+          counters_(counters) {}
+    float get1D(int offset) {
+        seek(offset, 1);
+        return sampler_.get1D();
+    }
+    Vec2f get2D(int offset) {
+        seek(offset, 2);
+        return sampler_.get2D();
+    }
+
+  private:
+    void seek(int offset, int count) {
+        if (offset != next_) sampler_.startPixelSample(pixel_, index_, base_ + offset);
+        next_ = offset + count;
+        counters_.dimensions += uint64_t(count);
+    }
+    S& sampler_;
+    Vec2i pixel_;
+    int index_, base_;
+    int next_ = -1;  // the offset the sampler would produce next
+    PathCounters& counters_;
 };
 
 // Next-event estimation at a non-specular vertex: one light sample, weighted
@@ -89,18 +127,19 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         }
         if (depth == settings.maxDepth) break;
 
-        sampler.startPixelSample(pixel, sampleIndex, dims::bounceBase(depth));
+        VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
         const Bsdf bsdf = scene.bsdfAt(si);
         const Frame frame(si.ns);
         const Vec3f wo = frame.toLocal(-dir);
-        const float uChoice = sampler.get1D();
-        const Vec2f uLight = sampler.get2D();
-        if (!bsdf.isSpecular())
+        if (!bsdf.isSpecular()) {
+            const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
+            const Vec2f uLight = draws.get2D(dims::kLightPoint);
             L += beta * estimateDirect(scene, si, frame, bsdf, wo, uChoice, uLight, counters);
+        }
 
-        const float uLobe = sampler.get1D();
-        const Vec2f uDirection = sampler.get2D();
-        counters.dimensions += 6;
+        const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
+        const Vec2f uDirection =
+            bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
         const auto bs = bsdf.sample(wo, uLobe, uDirection);
         if (!bs) break;
         const Vec3f wi = frame.toWorld(bs->wi);
@@ -112,11 +151,9 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         origin = scene.offsetOrigin(si, wi);
         dir = wi;
 
-        const float uRoulette = sampler.get1D();
-        ++counters.dimensions;
         if (settings.russianRoulette && depth >= IntegratorSettings::kRouletteStartDepth) {
             const float q = std::max(0.0f, 1 - maxComponent(beta));
-            if (uRoulette < q) break;
+            if (q > 0 && draws.get1D(dims::kRoulette) < q) break;
             beta *= 1 / (1 - q);
         }
         if (isBlack(beta)) break;
