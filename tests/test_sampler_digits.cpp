@@ -33,6 +33,40 @@ std::vector<uint64_t> haltonIndices() {
     return v;
 }
 
+TEST(SobolDigits, SecondDimensionIsThePascalMatrixFromBoostsDirectionNumbers) {
+    // The closed form of Sobol' dimension 1 against the generator matrix built
+    // from the Joe-Kuo direction numbers, column by column.
+    const uint32_t* column = sobolMatrices() + kSobolMatrixColumns;
+    auto matrixProduct = [&](uint64_t a) {
+        uint32_t v = 0;
+        for (int k = 0; k < kSobolMatrixColumns; ++k)
+            if (a >> k & 1) v ^= column[k];
+        return v;
+    };
+    for (int k = 0; k < kSobolMatrixColumns; ++k)
+        ASSERT_EQ(sobolSecondDimension(uint64_t(1) << k), column[k]) << "column " << k;
+    Pcg32 rng(23, 1);
+    for (uint64_t a = 0; a < 70000; ++a) ASSERT_EQ(sobolSecondDimension(a), matrixProduct(a)) << a;
+    for (int i = 0; i < 100000; ++i) {
+        const uint64_t a = uint64_t(rng.nextUInt()) << 32 | rng.nextUInt();
+        ASSERT_EQ(sobolSecondDimension(a), matrixProduct(a)) << a;
+    }
+}
+
+TEST(HaltonDigits, TabulatedRadicalInverseMatchesTheDigitLoop) {
+    // The unscrambled sampler's table-driven radical inverse against the
+    // general one (which divides), bit for bit, in every prime base.
+    const int* primes = primeTable();
+    const PrimeBase* bases = primeBases();
+    const auto indices = haltonIndices();
+    for (int d = 0; d < kPrimeTableSize; d += (d < 64 ? 1 : 37)) {
+        ASSERT_EQ(bases[d].divider.base, uint64_t(primes[d]));
+        for (uint64_t a : indices)
+            ASSERT_EQ(bits(radicalInverse(bases[d], a)), bits(radicalInverse(primes[d], a)))
+                << "base " << primes[d] << " index " << a;
+    }
+}
+
 TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
     const int* primes = primeTable();
     const auto indices = haltonIndices();

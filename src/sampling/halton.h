@@ -139,8 +139,8 @@ class HaltonSamplerT {
     // The pixel dimensions are the unscrambled digits below the image-scale
     // digits: scrambling them would move samples into other pixels.
     Vec2f getPixel2D() {
-        return {radicalInverse(2, haltonIndex_ >> mapping_.baseExponents[0]),
-                radicalInverse(3, haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
+        return {radicalInverse(bases_[0], haltonIndex_ >> mapping_.baseExponents[0]),
+                radicalInverse(bases_[1], haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
     }
 
     // The value of dimension d of Halton index a (exposed for tests and tools).
@@ -153,6 +153,7 @@ class HaltonSamplerT {
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
     const HaltonDimension* dimensions_ = nullptr;  // permutations_->dimensions
     const int* primes_;
+    const PrimeBase* bases_;  // primeBases()
     Vec2i pixel_{-1, -1};
     int index_ = -1;
     uint64_t haltonIndex_ = 0;
@@ -278,7 +279,11 @@ inline float owenScrambled(const HaltonDimension& t, uint64_t a) {
 
 template <HaltonScrambling kScrambling>
 HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
-    : spp_(c.samplesPerPixel), seed_(c.seed), mapping_(c.resolution), primes_(primeTable()) {
+    : spp_(c.samplesPerPixel),
+      seed_(c.seed),
+      mapping_(c.resolution),
+      primes_(primeTable()),
+      bases_(primeBases()) {
     if constexpr (kScrambling != HaltonScrambling::None) {
         permutations_ = haltonDigitPermutations(c.seed);
         dimensions_ = permutations_->dimensions.data();
@@ -296,9 +301,9 @@ float HaltonSamplerT<kScrambling>::sampleDimension(int d) const {
         }
     }
     const int wrapped = d < kPrimeTableSize ? d : 2 + (d - 2) % (kPrimeTableSize - 2);
-    const int base = primes_[wrapped];
+    [[maybe_unused]] const int base = primes_[wrapped];
     if constexpr (kScrambling == HaltonScrambling::None) {
-        return radicalInverse(base, haltonIndex_);
+        return radicalInverse(bases_[wrapped], haltonIndex_);
     } else if constexpr (kScrambling == HaltonScrambling::RandomDigit) {
         return randomDigitScrambledRadicalInverse(base, haltonIndex_,
                                                   permutations_->forDimension(wrapped, base),

@@ -24,6 +24,17 @@ const int* primeTable() {
     return primes.data();
 }
 
+const PrimeBase* primeBases() {
+    static const std::vector<PrimeBase> bases = [] {
+        std::vector<PrimeBase> b;
+        b.reserve(kPrimeTableSize);
+        for (int d = 0; d < kPrimeTableSize; ++d)
+            b.push_back({BaseDivider(uint32_t(primeTable()[d])), 1.0 / primeTable()[d]});
+        return b;
+    }();
+    return bases.data();
+}
+
 float radicalInverse(int base, uint64_t a) {
     // Accumulate the mirrored digits as an integer and scale once at the end,
     // stopping before the integer could overflow (digits past that point are

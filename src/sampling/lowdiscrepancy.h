@@ -91,6 +91,32 @@ struct BaseDivider {
     }
 };
 
+// A prime base ready for digit loops: its divider and its rounded reciprocal.
+// primeBases()[d] belongs to primeTable()[d]; built once, shared.
+struct PrimeBase {
+    BaseDivider divider;
+    double inverse;  // 1.0 / base, as radicalInverse rounds it
+};
+const PrimeBase* primeBases();
+
+// radicalInverse(base, a) without its two divisions per call (the divider's
+// reciprocal and the overflow limit): for a < 2^32 the mirrored integer has no
+// more digits than a and cannot overflow. The same digits, the same integer and
+// the same product of reciprocals, so the same float (tested).
+inline float radicalInverse(const PrimeBase& b, uint64_t a) {
+    if (a >> 32) return radicalInverse(int(b.divider.base), a);
+    const uint64_t base = b.divider.base;
+    uint64_t reversed = 0;
+    double invBaseM = 1.0;
+    while (a != 0) {
+        const uint64_t next = b.divider.quotient32(a);
+        reversed = reversed * base + (a - next * base);
+        invBaseM *= b.inverse;
+        a = next;
+    }
+    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
+}
+
 // The index whose first `digits` base-b digits, mirrored, give `inverse`:
 // Φ_b^{-1} restricted to `digits` digits (used for Halton's image-plane mapping).
 constexpr uint64_t inverseRadicalInverse(uint64_t inverse, int base, int digits) {
@@ -114,10 +140,27 @@ inline constexpr int kSobolMatrixColumns = 64;  // indices up to 2^64
 // fraction whose most significant bit is 1/2.
 const uint32_t* sobolMatrices();
 
+// Sobol' dimension 1 without its matrix. Its direction numbers (polynomial
+// x + 1, m_1 = 1) make C_1 Pascal's triangle mod 2: by Lucas' theorem, column k
+// has bit j (weight 2^-j-1) set iff the binary digits of j are a subset of k's.
+// So bit j of the product is the XOR of a's bits at the supersets of j — a
+// superset-sum transform over the six bits of the position, six shift-XORs —
+// then mirrored into a fraction. Equal to the matrix product (tested).
+[[gnu::always_inline]] inline uint32_t sobolSecondDimension(uint64_t a) {
+    a ^= (a & 0xaaaaaaaaaaaaaaaaULL) >> 1;
+    a ^= (a & 0xccccccccccccccccULL) >> 2;
+    a ^= (a & 0xf0f0f0f0f0f0f0f0ULL) >> 4;
+    a ^= (a & 0xff00ff00ff00ff00ULL) >> 8;
+    a ^= (a & 0xffff0000ffff0000ULL) >> 16;
+    a ^= (a & 0xffffffff00000000ULL) >> 32;
+    return reverseBits32(static_cast<uint32_t>(a));
+}
+
 inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {
     // Dimension 0 is the van der Corput sequence: C_0 is the bit reversal
     // (its columns past 32 are zero).
     if (dimension == 0) return reverseBits32(static_cast<uint32_t>(a));
+    if (dimension == 1) return sobolSecondDimension(a);
     const uint32_t* column = matrices + dimension * kSobolMatrixColumns;
     uint32_t v = 0;
     // One XOR per set bit of a, without data-dependent branches per bit.
