@@ -153,9 +153,11 @@ void runPoints(const PointsOptions& o) {
     AnySampler sampler = makeSampler(o.sampler, SamplerConfig{spp, o.seed, resolution});
 
     std::vector<Vec2f> pts(size_t(o.count));
+    const Vec2i pixel{px, py};
+    const int dimX = i, dimY = j;  // C++20 lambdas may capture bindings; clang 14 cannot
     std::visit(
         [&](auto& s) {
-            for (int k = 0; k < o.count; ++k) pts[k] = sampleDimensions(s, Vec2i{px, py}, k, i, j);
+            for (int k = 0; k < o.count; ++k) pts[k] = sampleDimensions(s, pixel, k, dimX, dimY);
         },
         sampler);
 
