@@ -13,10 +13,32 @@ endif
 setup:
 	@scripts/setup.sh
 
-$(BUILD)/build.ninja: CMakeLists.txt
-	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Profile-guided optimisation (PGO=0 turns it off): an instrumented pathlab is
+# built in $(PGO_BUILD) and trained (scripts/pgo-train.sh) whenever a source
+# changed, then the release build compiles with the profiles in $(PGO_DATA).
+# Same images, about 12% less time per frame (README, Performance).
+PGO ?= 1
+PGO_BUILD := build/pgo-generate
+PGO_DATA := $(abspath build/pgo-data)
+PGO_SOURCES := $(shell find src -name '*.cpp' -o -name '*.h') CMakeLists.txt scripts/pgo-train.sh
+ifeq ($(PGO),1)
+RELEASE_OPTIONS := -DPATHLAB_PGO=use -DPATHLAB_PGO_DIR=$(PGO_DATA)
+PGO_STAMP := $(PGO_DATA)/trained
+else
+RELEASE_OPTIONS := -DPATHLAB_PGO=
+PGO_STAMP :=
+endif
 
-build: setup $(BUILD)/build.ninja
+$(PGO_DATA)/trained: $(PGO_SOURCES)
+	@cmake -S . -B $(PGO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPATHLAB_LTO=OFF \
+	  -DPATHLAB_PGO=generate -DPATHLAB_PGO_DIR=$(PGO_DATA) >/dev/null
+	@cmake --build $(PGO_BUILD) -j $(JOBS) --target pathlab
+	@rm -rf $(PGO_DATA) && mkdir -p $(PGO_DATA)
+	@scripts/pgo-train.sh $(PGO_BUILD)/pathlab
+	@touch $@
+
+build: setup $(PGO_STAMP)
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(RELEASE_OPTIONS) >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
 test: build
