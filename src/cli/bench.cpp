@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -28,6 +29,7 @@ struct BenchOptions {
     int spp = 64;
     int size = 512;
     int threads = 0;
+    int rounds = 3;  // --samplers: frames per sampler, in rotated order
     std::vector<std::string> scenes{"cornell-box", "wolf"};
     int threadCount() const { return threads > 0 ? threads : tbb::info::default_concurrency(); }
 };
@@ -160,31 +162,53 @@ nlohmann::json memoryPerMillionTriangles(const BenchOptions& o) {
             {"peak_rss_mib", double(usage.ru_maxrss) / 1024.0}};
 }
 
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
 // Each sampler's frame on the Cornell box next to independent's, and the part
 // of it the sampler itself explains: ns per dimension × dimensions drawn.
+// A shared machine's speed drifts by more than the differences measured here,
+// so every round renders all samplers once (each round starting one sampler
+// further on), a sampler's cost is its frame time over independent's in the
+// same round, and the median over rounds is reported.
 nlohmann::json samplerShares(const BenchOptions& o) {
     const RenderScene scene(loadScene("cornell-box"));
+    const std::vector<SamplerInfo>& infos = samplerInfos();
+    const size_t count = infos.size();
+    std::vector<std::vector<double>> seconds(count);
+    std::vector<uint64_t> dimensions(count);
+    size_t independent = 0;
+    say(o, "sampler shares, cornell-box %dx%d %d spp, median of %d rounds:\n", o.size, o.size,
+        o.spp, o.rounds);
+    for (int round = 0; round < o.rounds; ++round)
+        for (size_t k = 0; k < count; ++k) {
+            const size_t i = (k + size_t(round)) % count;
+            const RenderStats st = render(scene, settingsFor(o, infos[i].name, o.threads)).stats;
+            seconds[i].push_back(st.seconds);
+            dimensions[i] = st.dimensions;
+            if (infos[i].name == "independent") independent = i;
+        }
     nlohmann::json rows = nlohmann::json::array();
-    double independentSeconds = 0;
-    say(o, "sampler shares, cornell-box %dx%d %d spp:\n", o.size, o.size, o.spp);
-    for (const SamplerInfo& info : samplerInfos()) {
-        const RenderStats st = render(scene, settingsFor(o, info.name, o.threads)).stats;
-        if (info.name == "independent") independentSeconds = st.seconds;
-        const double ns = nanosecondsPerDimension(info.name, o.spp, {o.size, o.size}, 4, 200000);
+    for (size_t i = 0; i < count; ++i) {
+        std::vector<double> ratios;
+        for (int r = 0; r < o.rounds; ++r) ratios.push_back(seconds[i][r] / seconds[independent][r]);
+        const double frame = median(seconds[i]);
+        const double ns =
+            nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 200000);
         // Dimensions are drawn on every thread at once.
-        const double samplerSeconds = ns * 1e-9 * double(st.dimensions) / o.threadCount();
-        rows.push_back({{"sampler", info.name},
-                        {"seconds", st.seconds},
-                        {"dimensions", st.dimensions},
+        const double samplerSeconds = ns * 1e-9 * double(dimensions[i]) / o.threadCount();
+        rows.push_back({{"sampler", infos[i].name},
+                        {"seconds", frame},
+                        {"dimensions", dimensions[i]},
                         {"ns_per_dimension", ns},
-                        {"sampler_share", samplerSeconds / st.seconds}});
-    }
-    for (auto& row : rows) {
-        row["vs_independent"] = row["seconds"].get<double>() / independentSeconds - 1;
+                        {"sampler_share", samplerSeconds / frame},
+                        {"vs_independent", median(ratios) - 1}});
         say(o, "  %-12s %8.3f s  %5.1f ns/dim  share %5.1f%%  vs independent %+6.1f%%\n",
-            row["sampler"].get<std::string>().c_str(), row["seconds"].get<double>(),
-            row["ns_per_dimension"].get<double>(), 100 * row["sampler_share"].get<double>(),
-            100 * row["vs_independent"].get<double>());
+            infos[i].name.c_str(), frame, ns, 100 * samplerSeconds / frame,
+            100 * (median(ratios) - 1));
     }
     return rows;
 }
@@ -217,6 +241,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--threads", opts->threads, "Worker threads (0 = all cores)")
         ->capture_default_str()
         ->check(CLI::Range(0, 4096));
+    cmd->add_option("--rounds", opts->rounds, "With --samplers: frames per sampler (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
     cmd->add_option("--scene", opts->scenes, "Scenes to render")->capture_default_str();
     cmd->callback([opts] { runBench(*opts); });
 }
