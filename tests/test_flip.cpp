@@ -364,6 +364,31 @@ TEST(FlipMetric, MatchesNvidiaReferenceImplementation) {
     EXPECT_EQ(h.exposures.count, 6);
 }
 
+TEST(FlipMetric, APreparedReferenceGivesEachTestItsOwnResult) {
+    // A study prepares its reference once and measures hundreds of cells with
+    // it: each result must equal that of a reference prepared for that test
+    // alone, whatever was measured before.
+    const Image hdr = patternImage(40, 32, 30.0f);
+    const Image tests[] = {withNoise(hdr, 0.3f, 5, true), withNoise(hdr, 0.05f, 6, true),
+                           withNoise(hdr, 0.3f, 5, true)};
+    for (flip::Mode mode : {flip::Mode::Ldr, flip::Mode::Hdr}) {
+        flip::Options o;
+        o.mode = mode;
+        const flip::PreparedReference shared(hdr, o);
+        std::vector<double> means;
+        for (const Image& test : tests) {
+            const flip::Result a = shared.evaluate(test);
+            const flip::Result b = flip::PreparedReference(hdr, o).evaluate(test);
+            ASSERT_EQ(a.errorMap, b.errorMap);
+            EXPECT_EQ(a.exposures.count, b.exposures.count);
+            means.push_back(a.stats.mean);
+        }
+        EXPECT_EQ(means[0], means[2]);
+        EXPECT_GT(means[0], means[1]);
+    }
+    EXPECT_THROW(flip::PreparedReference(hdr, flip::Options{}).evaluate(Image(40, 31)), InputError);
+}
+
 // ---- Error map ----
 
 TEST(FlipErrorMap, MagmaEndpointsAndExactPngEncoding) {

@@ -171,27 +171,6 @@ Color filteredToHuntLab(const RowBuffers& row, int x) {
     return huntAdjust(linearRgbToLab(rgb));
 }
 
-// The colour difference ΔE_c in [0,1] of every pixel ([HPG20], colour pipeline).
-Plane colorDifference(const YcxczPlanes& reference, const YcxczPlanes& test, float ppd) {
-    const CsfFilters filters = makeCsfFilters(ppd);
-    const CsfHalf refHalf = filterCsfHorizontally(reference, filters);
-    const CsfHalf testHalf = filterCsfHorizontally(test, filters);
-    const float cmax = maxColorDistance();
-    const int w = reference.y.width, h = reference.y.height;
-    Plane out(w, h);
-    forEachRow(h, [&](int y) {
-        RowBuffers refRow(w), testRow(w);
-        filterCsfVertically(refHalf, filters, y, refRow);
-        filterCsfVertically(testHalf, filters, y, testRow);
-        for (int x = 0; x < w; ++x) {
-            const float distance =
-                hyab(filteredToHuntLab(refRow, x), filteredToHuntLab(testRow, x));
-            out.row(y)[x] = remapColorDifference(std::pow(distance, kColorExponent), cmax);
-        }
-    });
-    return out;
-}
-
 // Horizontal half of the feature filtering of the achromatic channel
 // normalised to [0,1]: x-derivatives and the x-Gaussian.
 struct FeatureHalf {
@@ -242,24 +221,60 @@ FeatureRow featureMagnitudes(const FeatureHalf& half, const FeatureFilters& f, i
     return row;
 }
 
-// Combines colour and feature differences into FLIP, in place:
-// ΔE = ΔE_c^(1 − ΔE_f), ΔE_f = (max(|Δedge|, |Δpoint|)/√2)^q_f ([HPG20],
+}  // namespace
+
+// One image's half of LDR-FLIP, everything that does not depend on the other
+// image: its CSF-filtered colours in Hunt-adjusted L*a*b* ([HPG20], colour
+// pipeline) and its edge and point magnitudes (feature pipeline).
+struct LdrSide {
+    int width = 0, height = 0;
+    std::vector<Color> lab;
+    std::vector<float> edge, point;
+};
+
+namespace {
+
+LdrSide prepareLdrSide(const Image& image, float ppd) {
+    const YcxczPlanes planes = toYcxcz(image);
+    const int w = image.width, h = image.height;
+    LdrSide side{w, h, std::vector<Color>(image.pixelCount()),
+                 std::vector<float>(image.pixelCount()), std::vector<float>(image.pixelCount())};
+    const CsfFilters csf = makeCsfFilters(ppd);
+    const CsfHalf csfHalf = filterCsfHorizontally(planes, csf);
+    const FeatureFilters features = makeFeatureFilters(ppd);
+    const FeatureHalf featureHalf =
+        filterFeaturesHorizontally(normalizedAchromatic(planes.y), features);
+    forEachRow(h, [&](int y) {
+        RowBuffers row(w);
+        filterCsfVertically(csfHalf, csf, y, row);
+        const FeatureRow magnitudes = featureMagnitudes(featureHalf, features, y);
+        const size_t begin = size_t(y) * size_t(w);
+        for (int x = 0; x < w; ++x) side.lab[begin + size_t(x)] = filteredToHuntLab(row, x);
+        std::copy(magnitudes.edge.begin(), magnitudes.edge.end(), side.edge.begin() + begin);
+        std::copy(magnitudes.point.begin(), magnitudes.point.end(), side.point.begin() + begin);
+    });
+    return side;
+}
+
+// LDR-FLIP from the two sides: the colour difference ΔE_c in [0,1], then
+// ΔE = ΔE_c^(1 − ΔE_f) with ΔE_f = (max(|Δedge|, |Δpoint|)/√2)^q_f ([HPG20],
 // final difference map).
-void combineWithFeatures(const Plane& refY, const Plane& testY, float ppd, Plane& error) {
-    const FeatureFilters filters = makeFeatureFilters(ppd);
-    const FeatureHalf refHalf = filterFeaturesHorizontally(normalizedAchromatic(refY), filters);
-    const FeatureHalf testHalf = filterFeaturesHorizontally(normalizedAchromatic(testY), filters);
+std::vector<float> ldrFlipErrorMap(const LdrSide& ref, const LdrSide& test) {
+    const float cmax = maxColorDistance();
     const float inverseSqrt2 = 1.0f / std::sqrt(2.0f);
-    forEachRow(error.height, [&](int y) {
-        const FeatureRow ref = featureMagnitudes(refHalf, filters, y);
-        const FeatureRow test = featureMagnitudes(testHalf, filters, y);
-        for (int x = 0; x < error.width; ++x) {
-            const float edge = std::fabs(ref.edge[x] - test.edge[x]);
-            const float point = std::fabs(ref.point[x] - test.point[x]);
+    std::vector<float> error(ref.lab.size());
+    forEachRow(ref.height, [&](int y) {
+        const size_t begin = size_t(y) * size_t(ref.width), end = begin + size_t(ref.width);
+        for (size_t i = begin; i < end; ++i) {
+            const float distance = hyab(ref.lab[i], test.lab[i]);
+            const float color = remapColorDifference(std::pow(distance, kColorExponent), cmax);
+            const float edge = std::fabs(ref.edge[i] - test.edge[i]);
+            const float point = std::fabs(ref.point[i] - test.point[i]);
             const float feature = std::pow(inverseSqrt2 * std::max(edge, point), kFeatureExponent);
-            error.row(y)[x] = std::pow(error.row(y)[x], 1.0f - feature);
+            error[i] = std::pow(color, 1.0f - feature);
         }
     });
+    return error;
 }
 
 // ACES fit coefficients: (a·x² + b·x + c) / (d·x² + e·x + f).
@@ -438,10 +453,7 @@ float acesToneMap(float v) {
 
 std::vector<float> ldrFlipErrorMap(const Image& reference, const Image& test, float ppd) {
     requireSameSize(reference, test);
-    const YcxczPlanes ref = toYcxcz(reference), tst = toYcxcz(test);
-    Plane error = colorDifference(ref, tst, ppd);
-    combineWithFeatures(ref.y, tst.y, ppd, error);
-    return std::move(error.values);
+    return ldrFlipErrorMap(prepareLdrSide(reference, ppd), prepareLdrSide(test, ppd));
 }
 
 ExposureRange automaticExposureRange(const Image& reference) {
@@ -474,15 +486,13 @@ ExposureRange automaticExposureRange(const Image& reference) {
 std::vector<float> hdrFlipErrorMap(const Image& reference, const Image& test, float ppd,
                                    const ExposureRange& exposures) {
     requireSameSize(reference, test);
-    std::vector<float> maximum(reference.pixelCount(), 0.0f);
-    const float step = (exposures.stop - exposures.start) / float(exposures.count - 1);
-    for (int i = 0; i < exposures.count; ++i) {
-        const float exposure = exposures.start + float(i) * step;
-        const std::vector<float> error = ldrFlipErrorMap(exposeAndToneMap(reference, exposure),
-                                                         exposeAndToneMap(test, exposure), ppd);
-        for (size_t p = 0; p < maximum.size(); ++p) maximum[p] = std::max(maximum[p], error[p]);
-    }
-    return maximum;
+    Options options;
+    options.mode = Mode::Hdr;
+    options.ppd = ppd;
+    options.startExposure = exposures.start;
+    options.stopExposure = exposures.stop;
+    options.exposureCount = exposures.count;
+    return PreparedReference(reference, options).errorMap(test);
 }
 
 double weightedPercentile(std::vector<float> errors, double p) {
@@ -502,20 +512,62 @@ Statistics poolErrors(const std::vector<float>& errors) {
     return s;
 }
 
-Result evaluate(const Image& reference, const Image& test, const Options& options) {
-    requireSameSize(reference, test);
+namespace {
+
+// Exposure i of the range: start + i·(stop − start)/(count − 1) ([EG21]).
+float exposureAt(const ExposureRange& range, int i) {
+    const float step = (range.stop - range.start) / float(range.count - 1);
+    return range.start + float(i) * step;
+}
+
+}  // namespace
+
+PreparedReference::PreparedReference(const Image& reference, const Options& options)
+    : width_(reference.width), height_(reference.height), mode_(options.mode), ppd_(options.ppd) {
+    if (reference.pixelCount() == 0) throw InputError("images are empty");
     if (!(options.ppd > 0)) throw InputError("pixels per degree must be positive");
-    Result r;
-    r.width = reference.width, r.height = reference.height;
-    r.mode = options.mode, r.ppd = options.ppd;
     if (options.mode == Mode::Ldr) {
-        r.errorMap = ldrFlipErrorMap(clampedToUnit(reference), clampedToUnit(test), options.ppd);
-    } else {
-        r.exposures = resolveExposures(reference, options);
-        r.errorMap = hdrFlipErrorMap(reference, test, options.ppd, r.exposures);
+        sides_.push_back(prepareLdrSide(clampedToUnit(reference), ppd_));
+        return;
     }
+    exposures_ = resolveExposures(reference, options);
+    for (int i = 0; i < exposures_.count; ++i)
+        sides_.push_back(
+            prepareLdrSide(exposeAndToneMap(reference, exposureAt(exposures_, i)), ppd_));
+}
+
+PreparedReference::~PreparedReference() = default;
+
+std::vector<float> PreparedReference::errorMap(const Image& test) const {
+    if (test.width != width_ || test.height != height_)
+        throw InputError("images differ in size: reference " + std::to_string(width_) + "x" +
+                         std::to_string(height_) + ", test " + std::to_string(test.width) + "x" +
+                         std::to_string(test.height));
+    if (mode_ == Mode::Ldr)
+        return ldrFlipErrorMap(sides_[0], prepareLdrSide(clampedToUnit(test), ppd_));
+    std::vector<float> maximum(test.pixelCount(), 0.0f);
+    for (int i = 0; i < exposures_.count; ++i) {
+        const std::vector<float> error = ldrFlipErrorMap(
+            sides_[size_t(i)],
+            prepareLdrSide(exposeAndToneMap(test, exposureAt(exposures_, i)), ppd_));
+        for (size_t p = 0; p < maximum.size(); ++p) maximum[p] = std::max(maximum[p], error[p]);
+    }
+    return maximum;
+}
+
+Result PreparedReference::evaluate(const Image& test) const {
+    Result r;
+    r.width = width_, r.height = height_;
+    r.mode = mode_, r.ppd = ppd_;
+    if (mode_ == Mode::Hdr) r.exposures = exposures_;
+    r.errorMap = errorMap(test);
     r.stats = poolErrors(r.errorMap);
     return r;
+}
+
+Result evaluate(const Image& reference, const Image& test, const Options& options) {
+    requireSameSize(reference, test);
+    return PreparedReference(reference, options).evaluate(test);
 }
 
 }  // namespace pathlab::flip

@@ -118,6 +118,27 @@ struct Result {
     ExposureRange exposures;  // HDR only
 };
 
+// The reference's half of FLIP, computed once for comparing many test images
+// against one reference (a study measures every cell against its scene's
+// reference): the exposure range and, per exposure, the reference's filtered
+// colours and feature magnitudes. evaluate(test) equals
+// flip::evaluate(reference, test, options) bit for bit at about half the cost.
+struct LdrSide;
+class PreparedReference {
+  public:
+    PreparedReference(const Image& reference, const Options& options);
+    ~PreparedReference();
+    Result evaluate(const Image& test) const;
+    std::vector<float> errorMap(const Image& test) const;
+
+  private:
+    int width_, height_;
+    Mode mode_;
+    float ppd_;
+    ExposureRange exposures_;
+    std::vector<LdrSide> sides_;  // one (LDR) or one per exposure (HDR)
+};
+
 // Evaluates FLIP between two linear RGB images of equal size. LDR clamps both
 // to [0,1]; HDR uses them as they are. Throws InputError for mismatched sizes
 // or an invalid exposure range.

@@ -18,10 +18,25 @@ Image toneMapped(const Image& image, float exposure) {
     return out;
 }
 
+flip::Options studyFlipOptions() {
+    flip::Options options;
+    options.mode = flip::Mode::Hdr;
+    return options;
+}
+
 }  // namespace
 
+CellMeter::CellMeter(const Image& reference, float exposure, const StudySpec& spec)
+    : reference_(reference), exposure_(exposure), spec_(spec) {
+    if (spec.wants("flip")) flip_.emplace(reference, studyFlipOptions());
+}
+
+CellMetrics CellMeter::measure(const Image& test) const {
+    return measureCell(reference_, test, exposure_, spec_, flip_ ? &*flip_ : nullptr);
+}
+
 CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
-                        const StudySpec& spec) {
+                        const StudySpec& spec, const flip::PreparedReference* prepared) {
     CellMetrics m;
     m.mse = meanSquaredError(reference, test);
     m.rmse = std::sqrt(m.mse);
@@ -32,9 +47,8 @@ CellMetrics measureCell(const Image& reference, const Image& test, float exposur
         if (std::isfinite(psnr)) m.psnr = psnr;  // identical views have no finite PSNR
     }
     if (spec.wants("flip")) {
-        flip::Options options;
-        options.mode = flip::Mode::Hdr;
-        flip::Result r = flip::evaluate(reference, test, options);
+        flip::Result r = prepared ? prepared->evaluate(test)
+                                  : flip::evaluate(reference, test, studyFlipOptions());
         m.flip = r.stats.mean;
         m.flipMedian = r.stats.weightedMedian;
         m.flipMap = std::move(r.errorMap);

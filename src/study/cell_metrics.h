@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "metrics/flip.h"
 #include "study/spec.h"
 
 namespace pathlab {
@@ -20,8 +21,24 @@ struct CellMetrics {
 // MSE and RMSE always, the rest as `spec.metrics` asks. FLIP is HDR-FLIP (the
 // renders are linear and unbounded); PSNR is that of the tone-mapped 8-bit
 // views (both images scaled by 2^exposure, clamped, sRGB encoded, peak 1).
+// `flip` is the reference prepared once for HDR-FLIP (CellMeter below); the
+// values are those of flip::evaluate(reference, test).
 CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
-                        const StudySpec& spec);
+                        const StudySpec& spec, const flip::PreparedReference* flip = nullptr);
+
+// Measures cells against one reference: the reference's half of FLIP is
+// computed once, not once per cell.
+class CellMeter {
+  public:
+    CellMeter(const Image& reference, float exposure, const StudySpec& spec);
+    CellMetrics measure(const Image& test) const;
+
+  private:
+    const Image& reference_;
+    float exposure_;
+    const StudySpec& spec_;
+    std::optional<flip::PreparedReference> flip_;
+};
 
 // The reference's own noise, from the renderer's per-pixel variance of the
 // mean: E[MSE(test, reference)] = true MSE + noiseMse for a test independent of

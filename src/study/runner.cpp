@@ -246,9 +246,9 @@ std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
     return plan;
 }
 
-void recordCell(const Reference& ref, const CellKey& key, const Image& image, double seconds,
-                uint64_t nonFinite, StudyContext& ctx) {
-    const CellMetrics m = measureCell(ref.image, image, ref.exposure, ctx.spec);
+void recordCell(const Reference& ref, const CellMeter& meter, const CellKey& key,
+                const Image& image, double seconds, uint64_t nonFinite, StudyContext& ctx) {
+    const CellMetrics m = meter.measure(image);
     createDirectories((ctx.options.dir / cellStem(key)).parent_path());
     writeCellImages(ctx.options.dir, key, image, ref, m);
     CellRow row{key,
@@ -272,8 +272,8 @@ void recordCell(const Reference& ref, const CellKey& key, const Image& image, do
     ctx.progress.rendered(cellLabel(key), cellWork(ctx.spec, key));
 }
 
-void renderCells(const SceneJob& job, const Reference& ref, const CellRender& cells,
-                 StudyContext& ctx) {
+void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& meter,
+                 const CellRender& cells, StudyContext& ctx) {
     RenderSettings s;
     s.sampler = cells.sampler;
     s.samplesPerPixel = cells.spp.back();
@@ -288,8 +288,9 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellRender& ce
         return CellKey{job.scene.name, cells.sampler, spp, cells.seed};
     };
     for (const PrefixImage& p : out.prefixes)
-        recordCell(ref, key(p.spp), p.image, p.seconds, p.nonFinite, ctx);
-    recordCell(ref, key(s.samplesPerPixel), out.image, out.stats.seconds, out.stats.nonFinite, ctx);
+        recordCell(ref, meter, key(p.spp), p.image, p.seconds, p.nonFinite, ctx);
+    recordCell(ref, meter, key(s.samplesPerPixel), out.image, out.stats.seconds,
+               out.stats.nonFinite, ctx);
 }
 
 void runScene(const SceneJob& job, StudyContext& ctx) {
@@ -305,7 +306,8 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
     }
     const Reference ref = obtainReference(job, ctx);
     recordReference(job, ref, ctx);
-    for (const CellRender& cells : planRenders(todo)) renderCells(job, ref, cells, ctx);
+    const CellMeter meter(ref.image, ref.exposure, ctx.spec);
+    for (const CellRender& cells : planRenders(todo)) renderCells(job, ref, meter, cells, ctx);
 }
 
 // All the study's work, in samples: every cell, and the references not yet
