@@ -28,6 +28,7 @@
 // estimate keeps converging past S samples per pixel. Any number of dimensions.
 #pragma once
 
+#include <bit>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -66,6 +67,8 @@ class BlueNoiseSampler {
         const uint64_t h = hashValues(c.seed, 0x424eu);
         offsetX_ = static_cast<uint32_t>(h % uint64_t(texture_->size));
         offsetY_ = static_cast<uint32_t>((h >> 32) % uint64_t(texture_->size));
+        const uint64_t size = uint64_t(texture_->size);
+        sizeMask_ = (size & (size - 1)) == 0 ? size - 1 : 0;
     }
 
     int samplesPerPixel() const { return spp_; }
@@ -93,16 +96,23 @@ class BlueNoiseSampler {
                 : uint64_t(dims::kFirstBounce + (d - dims::kFirstBounce) % dims::kDimsPerBounce);
         const uint64_t x = uint64_t(uint32_t(pixel_.x)) + offsetX_;
         const uint64_t y = uint64_t(uint32_t(pixel_.y)) + offsetY_;
-        const uint64_t row = (y + inBlock * 100937 + index_ * 1091 + depth * 133337) % size;
-        const uint64_t col = (x + inBlock * 99523 + index_ * 2399 + depth * 2549) % size;
-        const uint32_t rotation = foldSeed(hashValues(seed_, d, index_ / size, 0x4350u));
+        const uint64_t row = wrap(y + inBlock * 100937 + index_ * 1091 + depth * 133337);
+        const uint64_t col = wrap(x + inBlock * 99523 + index_ * 2399 + depth * 2549);
+        const uint64_t block = sizeMask_ ? index_ >> std::countr_zero(size) : index_ / size;
+        const uint32_t rotation = foldSeed(hashValues(seed_, d, block, 0x4350u));
         return fixedPointToFloat(texture_->fixedPoint[row * size + col] + rotation);
     }
 
     int spp_;
     uint64_t seed_;
     std::shared_ptr<const BlueNoiseTexture> texture_;
+    // v mod size: a mask for the power-of-two sizes (the default 128), which
+    // saves two 64-bit divisions per dimension.
+    uint64_t wrap(uint64_t v) const {
+        return sizeMask_ ? v & sizeMask_ : v % uint64_t(texture_->size);
+    }
     uint32_t offsetX_ = 0, offsetY_ = 0;
+    uint64_t sizeMask_ = 0;  // size − 1 when size is a power of two, else 0
     Vec2i pixel_;
     uint64_t index_ = 0;
     int dimension_ = 0;

@@ -46,7 +46,9 @@ class Pmj02Sampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        pixelHash_ = hashValues(p.x, p.y, seed_, 0x504du);
+        // A path repositions several times per vertex: hash a pixel once.
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x504du);
         index_ = static_cast<uint32_t>(index);
         dimension_ = dim;
     }
@@ -83,6 +85,7 @@ class Pmj02Sampler {
     uint64_t seed_;
     std::shared_ptr<const Pmj02Tables> tables_;
     int log2Size_ = 0;
+    Vec2i pixel_{-1, -1};
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;

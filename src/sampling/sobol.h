@@ -117,7 +117,9 @@ class OwenSobolSampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        pixelHash_ = hashValues(p.x, p.y, seed_);
+        // A path repositions several times per vertex: hash a pixel once.
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_);
         index_ = static_cast<uint32_t>(index);
         dimension_ = dim;
     }
@@ -140,6 +142,7 @@ class OwenSobolSampler {
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
+    Vec2i pixel_{-1, -1};
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;
