@@ -53,6 +53,32 @@ TEST(SobolDigits, SecondDimensionIsThePascalMatrixFromBoostsDirectionNumbers) {
     }
 }
 
+TEST(SobolDigits, OwenSobolDrawsEqualBurleysDefinition) {
+    // sobol-owen's draws skip the bit reversals that cancel; every value must
+    // be the composition of scrambles it is defined as.
+    for (uint64_t seed : {0, 9}) {
+        OwenSobolSampler sampler(SamplerConfig{64, seed, {16, 16}});
+        Pcg32 rng(41, seed);
+        for (int call = 0; call < 20000; ++call) {
+            const Vec2i p{int(rng.nextUInt(16)), int(rng.nextUInt(16))};
+            const uint32_t index = call % 3 == 0 ? rng.nextUInt() : rng.nextUInt(4096);
+            const int dim = int(rng.nextUInt(80));
+            const uint64_t pixelHash = OwenSobolSampler::pixelHash(p, seed);
+            sampler.startPixelSample(p, int(index & 0x7fffffff), dim);
+            const uint32_t i = index & 0x7fffffff;
+            if (call % 2) {
+                ASSERT_EQ(bits(sampler.get1D()),
+                          bits(OwenSobolSampler::definition1D(pixelHash, i, dim)));
+            } else {
+                const Vec2f a = sampler.get2D(),
+                            b = OwenSobolSampler::definition2D(pixelHash, i, dim);
+                ASSERT_EQ(bits(a.x), bits(b.x));
+                ASSERT_EQ(bits(a.y), bits(b.y));
+            }
+        }
+    }
+}
+
 TEST(HaltonDigits, TabulatedRadicalInverseMatchesTheDigitLoop) {
     // The unscrambled sampler's table-driven radical inverse against the
     // general one (which divides), bit for bit, in every prime base.

@@ -146,14 +146,17 @@ const uint32_t* sobolMatrices();
 // So bit j of the product is the XOR of a's bits at the supersets of j — a
 // superset-sum transform over the six bits of the position, six shift-XORs —
 // then mirrored into a fraction. Equal to the matrix product (tested).
-[[gnu::always_inline]] inline uint32_t sobolSecondDimension(uint64_t a) {
+[[gnu::always_inline]] inline uint64_t sobolSupersetTransform(uint64_t a) {
     a ^= (a & 0xaaaaaaaaaaaaaaaaULL) >> 1;
     a ^= (a & 0xccccccccccccccccULL) >> 2;
     a ^= (a & 0xf0f0f0f0f0f0f0f0ULL) >> 4;
     a ^= (a & 0xff00ff00ff00ff00ULL) >> 8;
     a ^= (a & 0xffff0000ffff0000ULL) >> 16;
     a ^= (a & 0xffffffff00000000ULL) >> 32;
-    return reverseBits32(static_cast<uint32_t>(a));
+    return a;
+}
+[[gnu::always_inline]] inline uint32_t sobolSecondDimension(uint64_t a) {
+    return reverseBits32(static_cast<uint32_t>(sobolSupersetTransform(a)));
 }
 
 inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {

@@ -118,24 +118,48 @@ class OwenSobolSampler {
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
         // A path repositions several times per vertex: hash a pixel once.
-        if (p.x != pixel_.x || p.y != pixel_.y)
-            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_);
+        if (p.x != pixel_.x || p.y != pixel_.y) pixel_ = p, pixelHash_ = pixelHash(p, seed_);
         index_ = static_cast<uint32_t>(index);
         dimension_ = dim;
     }
+    // By definition (Burley 2020): the index shuffled by a nested scramble of
+    // its bits, i = O_h(index), then x = O_sx(C_0 i), y = O_sy(C_1 i) — see
+    // definition1D/2D. With O_s(v) = R(L_s(R(v))) (R the bit reversal, L_s
+    // the Laine–Karras permutation), C_0 = R and C_1 = R∘Z (Z the superset
+    // transform of sobolSecondDimension), the reversals that meet cancel:
+    // i = R(L_h(R(index))), x = R(L_sx(i)), y = R(L_sy(Z(i))) — four
+    // reversals per pair instead of eight, the same bits.
     float get1D() {
         const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_++) << 40 | 0x31));
         const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
-        return fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 0), foldSeed(mixBits(h))));
+        return fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, foldSeed(mixBits(h)))));
     }
     Vec2f get2D() {
         const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_) << 40 | 0x32));
         dimension_ += 2;
         const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
         const uint64_t s = mixBits(h);
-        return {fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 0), uint32_t(s))),
-                fixedPointToFloat(owenScramble(sobolBits(matrices_, i, 1), uint32_t(s >> 32)))};
+        return {fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, uint32_t(s)))),
+                fixedPointToFloat(reverseBits32(laineKarrasPermutation(
+                    uint32_t(sobolSupersetTransform(i)), uint32_t(s >> 32))))};
     }
+    // The definitions the draws above must equal (for tests): dimension `dim`
+    // of sample `index` for a pixel whose hash is `pixelHash`.
+    static float definition1D(uint64_t pixelHash, uint32_t index, int dim) {
+        const uint64_t h = mixBits(pixelHash ^ (uint64_t(dim) << 40 | 0x31));
+        const uint32_t i = owenScramble(index, static_cast<uint32_t>(h));
+        return fixedPointToFloat(
+            owenScramble(sobolBits(sobolMatrices(), i, 0), foldSeed(mixBits(h))));
+    }
+    static Vec2f definition2D(uint64_t pixelHash, uint32_t index, int dim) {
+        const uint64_t h = mixBits(pixelHash ^ (uint64_t(dim) << 40 | 0x32));
+        const uint32_t i = owenScramble(index, static_cast<uint32_t>(h));
+        const uint64_t s = mixBits(h);
+        return {
+            fixedPointToFloat(owenScramble(sobolBits(sobolMatrices(), i, 0), uint32_t(s))),
+            fixedPointToFloat(owenScramble(sobolBits(sobolMatrices(), i, 1), uint32_t(s >> 32)))};
+    }
+    static uint64_t pixelHash(Vec2i p, uint64_t seed) { return hashValues(p.x, p.y, seed); }
     Vec2f getPixel2D() { return get2D(); }
 
   private:
