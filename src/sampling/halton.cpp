@@ -105,8 +105,8 @@ HaltonImageMapping::HaltonImageMapping(Vec2i resolution) {
     multInverse[1] = baseScales[1] > 1 ? multiplicativeInverse(baseScales[0], baseScales[1]) : 0;
 }
 
-uint64_t HaltonImageMapping::index(Vec2i p, int sampleIndex) const {
-    const uint64_t stride = uint64_t(baseScales[0]) * uint64_t(baseScales[1]);
+uint64_t HaltonImageMapping::pixelOffset(Vec2i p) const {
+    const uint64_t stride = this->stride();
     uint64_t h = 0;
     if (stride > 1) {
         const int pm[2] = {((p.x % baseScales[0]) + baseScales[0]) % baseScales[0],
@@ -118,7 +118,7 @@ uint64_t HaltonImageMapping::index(Vec2i p, int sampleIndex) const {
         }
         h %= stride;
     }
-    return h + uint64_t(sampleIndex) * stride;
+    return h;
 }
 
 float randomDigitScrambledRadicalInverse(int base, uint64_t a, DigitPermutation permutation,

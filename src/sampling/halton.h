@@ -111,8 +111,14 @@ struct HaltonImageMapping {
     int baseExponents[2] = {0, 0};  // j, k
     uint64_t multInverse[2] = {0, 0};
     explicit HaltonImageMapping(Vec2i resolution);
-    // The Halton index of sample `index` of pixel p.
-    uint64_t index(Vec2i p, int sampleIndex) const;
+    // The Halton index of sample `index` of pixel p: pixelOffset(p) + index · stride().
+    uint64_t index(Vec2i p, int sampleIndex) const {
+        return pixelOffset(p) + uint64_t(sampleIndex) * stride();
+    }
+    // The pixel's first index h_p (the Chinese remainder theorem, a dozen 64-bit
+    // divisions: the samplers compute it once per pixel).
+    uint64_t pixelOffset(Vec2i p) const;
+    uint64_t stride() const { return uint64_t(baseScales[0]) * uint64_t(baseScales[1]); }
 };
 
 template <HaltonScrambling kScrambling>
@@ -122,12 +128,10 @@ class HaltonSamplerT {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        // Inverting the image mapping once per pixel sample is enough: a path
-        // restarts here at every vertex with the same sample.
-        if (p.x != pixel_.x || p.y != pixel_.y || index != index_) {
-            pixel_ = p, index_ = index;
-            haltonIndex_ = mapping_.index(p, index);
-        }
+        // The image mapping's pixel offset once per pixel; a sample's index is
+        // then one multiply-add (mapping_.index(p, index), bit for bit).
+        if (p.x != pixel_.x || p.y != pixel_.y) pixel_ = p, pixelOffset_ = mapping_.pixelOffset(p);
+        haltonIndex_ = pixelOffset_ + uint64_t(index) * stride_;
         dimension_ = std::max(2, dim);
     }
     float get1D() { return sampleDimension(dimension_++); }
@@ -150,12 +154,13 @@ class HaltonSamplerT {
     int spp_;
     uint64_t seed_;
     HaltonImageMapping mapping_;
+    uint64_t stride_;  // mapping_.stride()
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
     const HaltonDimension* dimensions_ = nullptr;  // permutations_->dimensions
     const int* primes_;
     const PrimeBase* bases_;  // primeBases()
     Vec2i pixel_{-1, -1};
-    int index_ = -1;
+    uint64_t pixelOffset_ = 0;  // mapping_.pixelOffset(pixel_)
     uint64_t haltonIndex_ = 0;
     int dimension_ = 0;
 };
@@ -282,6 +287,7 @@ HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
     : spp_(c.samplesPerPixel),
       seed_(c.seed),
       mapping_(c.resolution),
+      stride_(mapping_.stride()),
       primes_(primeTable()),
       bases_(primeBases()) {
     if constexpr (kScrambling != HaltonScrambling::None) {
