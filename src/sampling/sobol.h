@@ -192,7 +192,9 @@ class ZSobolSampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        mortonIndex_ = (encodeMorton2(uint32_t(p.x), uint32_t(p.y)) << log2Spp_) | uint64_t(index);
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelMorton_ = encodeMorton2(uint32_t(p.x), uint32_t(p.y)) << log2Spp_;
+        mortonIndex_ = pixelMorton_ | uint64_t(index);
         // The digits above the sample index's bits are the pixel's: their
         // permuted values stay cached while those bits stay the same.
         const uint64_t high = mortonIndex_ >> log2Spp_;
@@ -292,6 +294,8 @@ class ZSobolSampler {
     const uint32_t* matrices_;
     int log2Spp_ = 0;
     int base4Digits_ = 0;
+    Vec2i pixel_{-1, -1};
+    uint64_t pixelMorton_ = 0;  // the pixel's Morton code, shifted by log2Spp_
     uint64_t mortonIndex_ = 0;
     int dimension_ = 0;
     uint64_t cachedHigh_ = ~uint64_t(0);
