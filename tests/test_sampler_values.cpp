@@ -201,26 +201,22 @@ TEST(SamplerValues, VertexDrawsSkipDimensionsWithoutChangingThem) {
                             PathCounters counters;
                             VertexDimensions<S> draws(t, {3, 1}, index, depth, counters);
                             uint64_t drawn = 0;
+                            auto expectPair = [&](int offset, Vec2f expected) {
+                                const Vec2f u = draws.get2D(offset);
+                                EXPECT_EQ(u.x, expected.x) << name;
+                                EXPECT_EQ(u.y, expected.y) << name;
+                                drawn += 2;
+                            };
                             if (use.choice) {
                                 EXPECT_EQ(draws.get1D(dims::kLightChoice), choice) << name;
                                 drawn += 1;
                             }
-                            if (use.light) {
-                                const Vec2f u = draws.get2D(dims::kLightPoint);
-                                EXPECT_EQ(u.x, light.x) << name;
-                                EXPECT_EQ(u.y, light.y) << name;
-                                drawn += 2;
-                            }
+                            if (use.light) expectPair(dims::kLightPoint, light);
                             if (use.lobe) {
                                 EXPECT_EQ(draws.get1D(dims::kBsdfLobe), lobe) << name;
                                 drawn += 1;
                             }
-                            if (use.direction) {
-                                const Vec2f u = draws.get2D(dims::kBsdfDirection);
-                                EXPECT_EQ(u.x, direction.x) << name;
-                                EXPECT_EQ(u.y, direction.y) << name;
-                                drawn += 2;
-                            }
+                            if (use.direction) expectPair(dims::kBsdfDirection, direction);
                             if (use.roulette) {
                                 EXPECT_EQ(draws.get1D(dims::kRoulette), roulette) << name;
                                 drawn += 1;

@@ -295,11 +295,16 @@ Image exposeAndToneMap(const Image& image, float exposure) {
     return out;
 }
 
+// The test image must have the reference's size (width × height).
+void requireSize(int width, int height, const Image& test) {
+    if (width != test.width || height != test.height)
+        throw InputError("images differ in size: reference " + std::to_string(width) + "x" +
+                         std::to_string(height) + ", test " + std::to_string(test.width) + "x" +
+                         std::to_string(test.height));
+}
+
 void requireSameSize(const Image& reference, const Image& test) {
-    if (reference.width != test.width || reference.height != test.height)
-        throw InputError("images differ in size: reference " + std::to_string(reference.width) +
-                         "x" + std::to_string(reference.height) + ", test " +
-                         std::to_string(test.width) + "x" + std::to_string(test.height));
+    requireSize(reference.width, reference.height, test);
     if (reference.pixelCount() == 0) throw InputError("images are empty");
 }
 
@@ -539,10 +544,7 @@ PreparedReference::PreparedReference(const Image& reference, const Options& opti
 PreparedReference::~PreparedReference() = default;
 
 std::vector<float> PreparedReference::errorMap(const Image& test) const {
-    if (test.width != width_ || test.height != height_)
-        throw InputError("images differ in size: reference " + std::to_string(width_) + "x" +
-                         std::to_string(height_) + ", test " + std::to_string(test.width) + "x" +
-                         std::to_string(test.height));
+    requireSize(width_, height_, test);
     if (mode_ == Mode::Ldr)
         return ldrFlipErrorMap(sides_[0], prepareLdrSide(clampedToUnit(test), ppd_));
     std::vector<float> maximum(test.pixelCount(), 0.0f);
