@@ -1,6 +1,8 @@
 #include "study/runner.h"
 
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
@@ -207,11 +209,18 @@ void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ct
 void writeCellImages(const fs::path& dir, const CellKey& key, const Image& image,
                      const Reference& ref, const CellMetrics& m) {
     const std::string stem = (dir / cellStem(key)).string();
-    writeImage(stem + ".exr", image);
-    if (key.seed != 0) return;
-    if (!m.flipMap.empty()) writeErrorMap(stem + "-flip.png", m.flipMap, image.width, image.height);
-    writeErrorMap(stem + "-relse.png", relativeSquaredErrorMap(ref.image, image), image.width,
-                  image.height);
+    if (key.seed != 0) return writeImage(stem + ".exr", image);
+    // Encoding is single-threaded: the three files side by side.
+    tbb::parallel_invoke(
+        [&] { writeImage(stem + ".exr", image); },
+        [&] {
+            if (!m.flipMap.empty())
+                writeErrorMap(stem + "-flip.png", m.flipMap, image.width, image.height);
+        },
+        [&] {
+            writeErrorMap(stem + "-relse.png", relativeSquaredErrorMap(ref.image, image),
+                          image.width, image.height);
+        });
     writeImage(stem + ".png", image, ref.exposure);  // last: cellComplete looks for it
 }
 
@@ -246,21 +255,34 @@ std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
     return plan;
 }
 
-void recordCell(const Reference& ref, const CellMeter& meter, const CellKey& key,
-                const Image& image, double seconds, uint64_t nonFinite, StudyContext& ctx) {
-    const CellMetrics m = meter.measure(image);
-    createDirectories((ctx.options.dir / cellStem(key)).parent_path());
-    writeCellImages(ctx.options.dir, key, image, ref, m);
-    CellRow row{key,
-                seconds,
+// One cell's measurements and images, ready to be committed as its row.
+struct MeasuredCell {
+    CellKey key;
+    double seconds = 0;
+    uint64_t nonFinite = 0;
+    CellMetrics metrics;
+};
+
+MeasuredCell measureAndWriteCell(const Reference& ref, const CellMeter& meter, const CellKey& key,
+                                 const Image& image, double seconds, uint64_t nonFinite,
+                                 const StudyContext& ctx) {
+    MeasuredCell cell{key, seconds, nonFinite, meter.measure(image)};
+    writeCellImages(ctx.options.dir, key, image, ref, cell.metrics);
+    return cell;
+}
+
+void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
+    const CellMetrics& m = cell.metrics;
+    CellRow row{cell.key,
+                cell.seconds,
                 m.mse,
                 m.rmse,
                 m.relmse,
                 m.flip,
                 m.flipMedian,
                 m.psnr,
-                int64_t(nonFinite),
-                cellStem(key) + ".exr",
+                int64_t(cell.nonFinite),
+                cellStem(cell.key) + ".exr",
                 ctx.spec.resolution.x,
                 ctx.spec.resolution.y,
                 ctx.spec.maxDepth,
@@ -269,7 +291,7 @@ void recordCell(const Reference& ref, const CellMeter& meter, const CellKey& key
                 isoTimestampUtc()};
     ctx.store.putCell(row);
     ++ctx.run.cellsRendered;
-    ctx.progress.rendered(cellLabel(key), cellWork(ctx.spec, key));
+    ctx.progress.rendered(cellLabel(cell.key), cellWork(ctx.spec, cell.key));
 }
 
 void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& meter,
@@ -284,13 +306,23 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
     s.russianRoulette = ctx.spec.russianRoulette;
     s.threads = ctx.options.threads;
     const RenderOutput out = render(*job.render, s);
-    const auto key = [&](int spp) {
-        return CellKey{job.scene.name, cells.sampler, spp, cells.seed};
-    };
-    for (const PrefixImage& p : out.prefixes)
-        recordCell(ref, meter, key(p.spp), p.image, p.seconds, p.nonFinite, ctx);
-    recordCell(ref, meter, key(s.samplesPerPixel), out.image, out.stats.seconds,
-               out.stats.nonFinite, ctx);
+    std::vector<PrefixImage> images = out.prefixes;
+    images.push_back(
+        {s.samplesPerPixel, out.image, out.varianceOfMean, out.stats.seconds, out.stats.nonFinite});
+    // The cells' FLIP, error maps and file encoding are measured side by side
+    // (much of it is single-threaded); their rows are then committed in spp
+    // order, one transaction each, so the store's order does not depend on
+    // which finished first.
+    createDirectories(
+        (ctx.options.dir / cellStem({job.scene.name, cells.sampler, 1, 0})).parent_path());
+    std::vector<MeasuredCell> measured(images.size());
+    tbb::parallel_for(size_t(0), images.size(), [&](size_t k) {
+        const PrefixImage& p = images[k];
+        measured[k] =
+            measureAndWriteCell(ref, meter, {job.scene.name, cells.sampler, p.spp, cells.seed},
+                                p.image, p.seconds, p.nonFinite, ctx);
+    });
+    for (const MeasuredCell& cell : measured) commitCell(cell, ctx);
 }
 
 void runScene(const SceneJob& job, StudyContext& ctx) {
