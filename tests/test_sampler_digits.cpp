@@ -1,4 +1,4 @@
-// The digit-level fast paths of the Halton and ZSobol samplers against the
+// The digit-level fast paths of the Halton and Sobol' samplers against the
 // digit-by-digit definitions they must reproduce.
 #include <gtest/gtest.h>
 
@@ -50,6 +50,50 @@ TEST(SobolDigits, SecondDimensionIsThePascalMatrixFromBoostsDirectionNumbers) {
     for (int i = 0; i < 100000; ++i) {
         const uint64_t a = uint64_t(rng.nextUInt()) << 32 | rng.nextUInt();
         ASSERT_EQ(sobolSecondDimension(a), matrixProduct(a)) << a;
+    }
+}
+
+TEST(SobolDigits, NibbleTablesEqualTheColumnLoop) {
+    // Every tabulated dimension, on small indices (every 4-bit group value),
+    // random 32-bit ones and ones past 2^32 (whose high bits take the loop).
+    const uint32_t* matrices = sobolMatrices();
+    const SobolNibbleTable* tables = sobolNibbleTables();
+    Pcg32 rng(29, 5);
+    for (int d = 0; d < kSobolNibbleDimensions; ++d) {
+        const uint32_t* column = matrices + d * kSobolMatrixColumns;
+        for (uint64_t a = 0; a < 4096; ++a)
+            ASSERT_EQ(sobolBitsByNibbles(tables[d], column, a), sobolBits(matrices, a, d)) << d;
+        for (int i = 0; i < 4000; ++i) {
+            const uint64_t wide = uint64_t(rng.nextUInt()) << 32 | rng.nextUInt();
+            const uint64_t a = i % 2 ? wide : wide >> 32;
+            ASSERT_EQ(sobolBitsByNibbles(tables[d], column, a), sobolBits(matrices, a, d))
+                << d << " " << a;
+        }
+    }
+}
+
+template <typename S>
+void expectGlobalSobolDrawsMatchDefinition(uint64_t seed) {
+    // A 4096² image maps pixel samples to indices beyond 2^32 for large sample
+    // numbers; dimensions cross the end of the tables (64).
+    S sampler(SamplerConfig{1 << 20, seed, {4096, 4096}});
+    Pcg32 rng(43, seed);
+    for (int call = 0; call < 20000; ++call) {
+        const Vec2i p{int(rng.nextUInt(4096)), int(rng.nextUInt(4096))};
+        const int index = int(call % 2 ? rng.nextUInt(1 << 20) : rng.nextUInt(64));
+        const int dim = 2 + int(rng.nextUInt(90));
+        sampler.startPixelSample(p, index, dim);
+        const float fast = sampler.get1D();
+        sampler.startPixelSample(p, index, dim);
+        ASSERT_EQ(bits(fast), bits(sampler.sampleDimensionByDefinition(dim)))
+            << p.x << "," << p.y << " #" << index << " dim " << dim;
+    }
+}
+
+TEST(SobolDigits, GlobalSobolDrawsEqualTheirDefinition) {
+    for (uint64_t seed : {0, 12}) {
+        expectGlobalSobolDrawsMatchDefinition<SobolSampler>(seed);
+        expectGlobalSobolDrawsMatchDefinition<XorSobolSampler>(seed);
     }
 }
 

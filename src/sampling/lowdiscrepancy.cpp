@@ -107,4 +107,18 @@ const uint32_t* sobolMatrices() {
     return matrices.data();
 }
 
+const SobolNibbleTable* sobolNibbleTables() {
+    static const std::vector<SobolNibbleTable> tables = [] {
+        std::vector<SobolNibbleTable> t(kSobolNibbleDimensions);
+        const uint32_t* matrices = sobolMatrices();
+        for (int d = 0; d < kSobolNibbleDimensions; ++d)
+            for (int g = 0; g < 8; ++g)
+                for (uint32_t value = 0; value < 16; ++value)
+                    t[size_t(d)].entries[g][value] =
+                        sobolBits(matrices, uint64_t(value) << (4 * g), d);
+        return t;
+    }();
+    return tables.data();
+}
+
 }  // namespace pathlab

@@ -171,6 +171,29 @@ inline uint32_t sobolBits(const uint32_t* matrices, uint64_t a, int dimension) {
     return v;
 }
 
+// The same products for the first kSobolNibbleDimensions dimensions by table:
+// C_d · a is linear over GF(2), so it is the XOR over a's eight 4-bit groups g
+// of C_d · (g's bits in place) — eight precomputed entries of 16 instead of one
+// column per set bit (about eleven for the indices of a 256×256 image at 64
+// spp), with no loop to mispredict. 512 bytes per dimension; the 64 dimensions
+// a path of depth 8 uses fit in L1. Bits of a from 32 on go column by column.
+inline constexpr int kSobolNibbleDimensions = 64;
+struct SobolNibbleTable {
+    uint32_t entries[8][16];  // [group][value]
+};
+const SobolNibbleTable* sobolNibbleTables();  // kSobolNibbleDimensions of them
+
+inline uint32_t sobolBitsByNibbles(const SobolNibbleTable& t, const uint32_t* column, uint64_t a) {
+    const auto low = static_cast<uint32_t>(a);
+    uint32_t v = t.entries[0][low & 15] ^ t.entries[1][(low >> 4) & 15] ^
+                 t.entries[2][(low >> 8) & 15] ^ t.entries[3][(low >> 12) & 15] ^
+                 t.entries[4][(low >> 16) & 15] ^ t.entries[5][(low >> 20) & 15] ^
+                 t.entries[6][(low >> 24) & 15] ^ t.entries[7][low >> 28];
+    for (uint64_t high = a >> 32; high != 0; high &= high - 1)
+        v ^= column[32 + __builtin_ctzll(high)];
+    return v;
+}
+
 // ---------------------------------------------------------------------------
 // Binary scramblers applied to a 32-bit fraction.
 

@@ -33,6 +33,7 @@
 // dimensions 0 and 1 with Owen scrambling seeded per dimension.
 #pragma once
 
+#include <array>
 #include <memory>
 
 #include "sampling/lowdiscrepancy.h"
@@ -58,7 +59,11 @@ class GlobalSobolSamplerT {
         : spp_(c.samplesPerPixel),
           seed_(c.seed),
           matrices_(sobolMatrices()),
-          mapping_(std::make_shared<const SobolImageMapping>(matrices_, c.resolution)) {}
+          nibbleTables_(sobolNibbleTables()),
+          mapping_(std::make_shared<const SobolImageMapping>(matrices_, c.resolution)) {
+        if constexpr (kScrambling == SobolScrambling::Xor)
+            for (int d = 0; d < kSobolNibbleDimensions; ++d) shifts_[size_t(d)] = shiftOf(d);
+    }
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
@@ -87,18 +92,36 @@ class GlobalSobolSamplerT {
         return {fixedPointToFloat(m == 0 ? x : x << m), fixedPointToFloat(m == 0 ? y : y << m)};
     }
 
-  private:
+    // Dimension d of the current index: its value and — for sobol-xor — its
+    // shift come from tables for the first kSobolNibbleDimensions dimensions
+    // (the same bits: tested against sampleDimensionByDefinition).
     float sampleDimension(int d) const {
+        if (d < kSobolNibbleDimensions) {
+            uint32_t v = sobolBitsByNibbles(nibbleTables_[d], matrices_ + d * kSobolMatrixColumns,
+                                            sobolIndex_);
+            if constexpr (kScrambling == SobolScrambling::Xor)
+                v = xorScramble(v, shifts_[size_t(d)]);
+            return fixedPointToFloat(v);
+        }
+        return sampleDimensionByDefinition(d);
+    }
+
+  public:
+    float sampleDimensionByDefinition(int d) const {
         const int wrapped = d < kSobolDimensions ? d : 2 + (d - 2) % (kSobolDimensions - 2);
         uint32_t v = sobolBits(matrices_, sobolIndex_, wrapped);
-        if constexpr (kScrambling == SobolScrambling::Xor)
-            v = xorScramble(v, foldSeed(hashValues(d, seed_, 0x584f52u)));
+        if constexpr (kScrambling == SobolScrambling::Xor) v = xorScramble(v, shiftOf(d));
         return fixedPointToFloat(v);
     }
+
+  private:
+    uint32_t shiftOf(int d) const { return foldSeed(hashValues(d, seed_, 0x584f52u)); }
 
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
+    const SobolNibbleTable* nibbleTables_;
+    std::array<uint32_t, kSobolNibbleDimensions> shifts_{};  // sobol-xor's, by dimension
     std::shared_ptr<const SobolImageMapping> mapping_;
     Vec2i pixel_{-1, -1};
     int index_ = -1;
