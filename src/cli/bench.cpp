@@ -168,34 +168,54 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
+// CPU seconds (user + system, all threads) the process has used so far.
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * t.tv_usec; };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+struct TimedFrame {
+    double wall = 0, cpu = 0;
+    uint64_t dimensions = 0;
+};
+
+TimedFrame timedFrame(const RenderScene& scene, const BenchOptions& o, const std::string& name) {
+    const double cpuStart = processCpuSeconds();
+    const RenderStats st = render(scene, settingsFor(o, name, o.threads)).stats;
+    return {st.seconds, processCpuSeconds() - cpuStart, st.dimensions};
+}
+
 // Each sampler's frame on the Cornell box next to independent's, and the part
 // of it the sampler itself explains: ns per dimension × dimensions drawn.
 // A shared machine's speed drifts by more than the differences measured here,
-// so every round renders all samplers once (each round starting one sampler
-// further on), a sampler's cost is its frame time over independent's in the
-// same round, and the median over rounds is reported.
+// so each sampler's frame is paired with an independent frame rendered just
+// before it, both timed in CPU seconds (which another process's load moves
+// less than wall time); a round does this for every sampler (each round
+// starting one sampler further on), and the median over rounds of the ratio
+// within each pair is reported.
 nlohmann::json samplerShares(const BenchOptions& o) {
     const RenderScene scene(loadScene("cornell-box"));
     const std::vector<SamplerInfo>& infos = samplerInfos();
     const size_t count = infos.size();
-    std::vector<std::vector<double>> seconds(count);
+    std::vector<std::vector<double>> seconds(count), ratios(count);
     std::vector<uint64_t> dimensions(count);
-    size_t independent = 0;
     say(o, "sampler shares, cornell-box %dx%d %d spp, median of %d rounds:\n", o.size, o.size,
         o.spp, o.rounds);
     for (int round = 0; round < o.rounds; ++round)
         for (size_t k = 0; k < count; ++k) {
             const size_t i = (k + size_t(round)) % count;
-            const RenderStats st = render(scene, settingsFor(o, infos[i].name, o.threads)).stats;
-            seconds[i].push_back(st.seconds);
-            dimensions[i] = st.dimensions;
-            if (infos[i].name == "independent") independent = i;
+            const TimedFrame base = timedFrame(scene, o, "independent");
+            const TimedFrame frame =
+                infos[i].name == "independent" ? base : timedFrame(scene, o, infos[i].name);
+            seconds[i].push_back(frame.wall);
+            ratios[i].push_back(frame.cpu / base.cpu);
+            dimensions[i] = frame.dimensions;
         }
     nlohmann::json rows = nlohmann::json::array();
     for (size_t i = 0; i < count; ++i) {
-        std::vector<double> ratios;
-        for (int r = 0; r < o.rounds; ++r) ratios.push_back(seconds[i][r] / seconds[independent][r]);
-        const double frame = median(seconds[i]);
+        const double frame = median(seconds[i]), ratio = median(ratios[i]);
         const double ns =
             nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 200000);
         // Dimensions are drawn on every thread at once.
@@ -205,10 +225,9 @@ nlohmann::json samplerShares(const BenchOptions& o) {
                         {"dimensions", dimensions[i]},
                         {"ns_per_dimension", ns},
                         {"sampler_share", samplerSeconds / frame},
-                        {"vs_independent", median(ratios) - 1}});
+                        {"vs_independent", ratio - 1}});
         say(o, "  %-12s %8.3f s  %5.1f ns/dim  share %5.1f%%  vs independent %+6.1f%%\n",
-            infos[i].name.c_str(), frame, ns, 100 * samplerSeconds / frame,
-            100 * (median(ratios) - 1));
+            infos[i].name.c_str(), frame, ns, 100 * samplerSeconds / frame, 100 * (ratio - 1));
     }
     return rows;
 }
