@@ -181,9 +181,13 @@ inline float floatBelow(double v) {
 }
 
 // (digit + rotation) mod base, for digit and rotation both below base.
+// Whether the sum wraps is a coin flip per digit, so it is computed with a
+// mask: written as a conditional, the profile-guided build turned it into a
+// branch that mispredicted half the time (halton-owen's frames took 1.3× as long).
 inline uint32_t rotateDigit(uint32_t digit, uint32_t rotation, uint32_t base) {
     const uint32_t rotated = digit + rotation;
-    return rotated >= base ? rotated - base : rotated;
+    const uint32_t wrapped = 0u - uint32_t(rotated >= base);  // all ones when it wraps
+    return rotated - (base & wrapped);
 }
 
 // The rotation of the node of Owen's tree at depth k named by prefix (the
