@@ -6,8 +6,8 @@
 
 #include "core/error.h"
 #include "render/renderer.h"
-#include "scene/builtin_scenes.h"
 #include "sampling/registry.h"
+#include "scene/builtin_scenes.h"
 
 namespace pathlab {
 namespace {
@@ -57,8 +57,7 @@ TEST(WhiteFurnace, RadianceIsEmissionOverOneMinusAlbedo) {
         const ImageMean m = meanOf(render(scene, s));
         // Each channel's per-pixel noise is correlated across channels (grey
         // scene), so allow 5 standard errors plus float round-off.
-        EXPECT_NEAR(m.mean, Le / (1 - a), 5 * m.standardError * std::sqrt(3.0) + 1e-3)
-            << info.name;
+        EXPECT_NEAR(m.mean, Le / (1 - a), 5 * m.standardError * std::sqrt(3.0) + 1e-3) << info.name;
     }
 }
 
@@ -106,8 +105,8 @@ TEST(Determinism, IdenticalBytesForAnyThreadCount) {
                 first = out.image.rgb;
                 continue;
             }
-            ASSERT_EQ(0, std::memcmp(first.data(), out.image.rgb.data(),
-                                     first.size() * sizeof(float)))
+            ASSERT_EQ(0,
+                      std::memcmp(first.data(), out.image.rgb.data(), first.size() * sizeof(float)))
                 << sampler << " with " << threads << " threads";
         }
     }
@@ -137,7 +136,6 @@ TEST(RenderSettingsValidation, RejectsOutOfRangeValues) {
     s.sampler = "no-such-sampler";
     EXPECT_THROW(validateRenderSettings(s), InputError);
 }
-
 
 // Two independent Cornell-box renders at 1024 and 4096 spp differ only by their
 // noise: per pixel and channel z = (a − b)/√(σa² + σb²) has unit variance.
@@ -171,19 +169,23 @@ TEST(CornellBox, ConvergesToOneImage) {
     EXPECT_GT(right.y, 2 * right.x);
 }
 
-
-// Direct lighting of a diffuse floor by a square light straight above, in a
-// scene whose far-away extra triangle makes the ray-offset epsilon large:
-// the shadow ray must still reach the light. Expected radiance at the point
-// under the light: (albedo/π)·∫ Le cosθ cosθ' / r² dA, integrated numerically.
-TEST(DirectLighting, MatchesIrradianceIntegralInALargeScene) {
+// Direct lighting of a diffuse floor by a square light at height h straight
+// above, in a scene whose far-away extra triangle makes the ray-offset epsilon
+// large (601 · 2e-5 ≈ 0.012): the shadow ray must still reach the light, and
+// must stop before it rather than hit it. Returns the mean radiance and the
+// expected (albedo/π)·∫ Le cosθ cosθ' / r² dA, integrated numerically.
+struct DirectLightingCheck {
+    ImageMean measured;
+    double expected;
+};
+DirectLightingCheck renderFloorUnderLight(float h) {
     SceneDescription s;
     s.materials.push_back(Material{"floor", MaterialType::Diffuse, Vec3f(0.5f)});
     Mesh floor;
     floor.positions = {{-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10}};
     floor.indices = {0, 1, 2, 0, 2, 3};
     Mesh light;
-    const float h = 5, Le = 10;
+    const float Le = 10;
     light.positions = {{-0.5f, h, -0.5f}, {0.5f, h, -0.5f}, {0.5f, h, 0.5f}, {-0.5f, h, 0.5f}};
     light.indices = {0, 1, 2, 0, 2, 3};
     light.emission = Vec3f(Le);
@@ -191,7 +193,8 @@ TEST(DirectLighting, MatchesIrradianceIntegralInALargeScene) {
     far.positions = {{600, 600, 600}, {601, 600, 600}, {600, 601, 600}};
     far.indices = {0, 1, 2};
     s.meshes = {floor, light, far};
-    s.camera = Camera{{0, 2, 0.001f}, {0, 0, 0}, {0, 0, 1}, 0.5f};
+    // Looking straight down from just under the light at the floor below it.
+    s.camera = Camera{{0, 0.9f * h, 0.001f}, {0, 0, 0}, {0, 0, 1}, 0.5f};
     s.resolution = {8, 8};
     const RenderScene scene(s);
     RenderSettings settings;
@@ -199,16 +202,30 @@ TEST(DirectLighting, MatchesIrradianceIntegralInALargeScene) {
     settings.maxDepth = 1;
     const RenderOutput out = render(scene, settings);
     double irradiance = 0;
-    const int n = 400;
+    const int n = 1000;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             const double x = -0.5 + (i + 0.5) / n, z = -0.5 + (j + 0.5) / n;
-            const double r2 = x * x + z * z + h * h, cos = h / std::sqrt(r2);
+            const double r2 = x * x + z * z + double(h) * h, cos = h / std::sqrt(r2);
             irradiance += Le * cos * cos / r2 / (double(n) * n);
         }
-    const double expected = 0.5 / M_PI * irradiance;
-    const ImageMean m = meanOf(out);
+    return {meanOf(out), 0.5 / M_PI * irradiance};
+}
+
+TEST(DirectLighting, MatchesIrradianceIntegralInALargeScene) {
+    const auto [m, expected] = renderFloorUnderLight(5);
     EXPECT_NEAR(m.mean, expected, 5 * m.standardError * std::sqrt(3.0) + 1e-3 * expected);
+}
+
+// The light 1 unit above the floor, about 80 ray offsets: a shadow ray cast
+// along the light direction from the nudged origin runs parallel to the
+// segment to the light point, ε off it, and crosses the light's plane up to
+// ε/cosθ before the point — it hit the light it was aimed at, and the floor
+// came out at 9% of its irradiance. Aimed at the light point itself, it stops
+// short of it.
+TEST(DirectLighting, ShadowRaysStopShortOfTheLightTheyAimAt) {
+    const auto [m, expected] = renderFloorUnderLight(1.0f);
+    EXPECT_NEAR(m.mean, expected, 5 * m.standardError * std::sqrt(3.0) + 2e-3 * expected);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 namespace pathlab {
 
 class PinholeCamera {
-public:
+  public:
     PinholeCamera(const Camera& c, Vec2i resolution) : eye_(c.eye) {
         const Vec3f forward = normalize(c.target - c.eye);
         const Vec3f right = normalize(cross(forward, c.up));
@@ -29,7 +29,7 @@ public:
     // Unit direction through the film position (x, y), in pixel units.
     Vec3f direction(float x, float y) const { return normalize(origin_ + dx_ * x + dy_ * y); }
 
-private:
+  private:
     Vec3f eye_, origin_, dx_, dy_;
 };
 

@@ -80,13 +80,18 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
     if (isBlack(f)) return Vec3f(0.0f);
     ++counters.shadowRays;
-    // The shadow ray starts at the nudged origin, so its length is measured
-    // from there; stop just short of the light so it cannot block itself.
+    // The shadow ray runs from the nudged origin to the light point itself, as
+    // pbrt-v4's SpawnRayTo: with the unnormalised difference as its direction,
+    // t = 1 is the light, and it stops at 1 − 10⁻⁴ so it cannot hit the light
+    // and block itself. (A ray along wi from the nudged origin runs parallel to
+    // the segment, ε off it, and crosses the light's plane up to ε/cosθ early:
+    // grazing samples of a nearby light were blocked by the light.)
     const Vec3f origin = scene.offsetOrigin(si, ls->wi);
-    const float tMax = std::isinf(ls->distance)
-                           ? ls->distance
-                           : length(si.p + ls->wi * ls->distance - origin) * (1 - 1e-4f);
-    if (scene.occluded(origin, ls->wi, tMax)) return Vec3f(0.0f);
+    const bool blocked =
+        std::isinf(ls->distance)
+            ? scene.occluded(origin, ls->wi, ls->distance)
+            : scene.occluded(origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f);
+    if (blocked) return Vec3f(0.0f);
     const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
     return f * ls->radiance * (weight / ls->pdf);
 }

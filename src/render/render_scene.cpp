@@ -80,20 +80,4 @@ Vec3f RenderScene::offsetOrigin(const SurfaceInteraction& si, Vec3f w) const {
     return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
 }
 
-Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si) const {
-    const Material& m = desc_.materials[size_t(si.material)];
-    switch (m.type) {
-        case MaterialType::Diffuse:
-            return Bsdf::diffuse(m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv)
-                                                : m.albedo);
-        case MaterialType::Mirror:
-            return Bsdf::mirror(m.albedo);
-        case MaterialType::Dielectric:
-            return Bsdf::dielectric(m.ior);
-        case MaterialType::Conductor:
-            return Bsdf::conductor(m.eta, m.k, m.roughness);
-    }
-    return Bsdf::diffuse(m.albedo);
-}
-
 }  // namespace pathlab

@@ -52,4 +52,23 @@ class RenderScene {
     float epsilon_ = 1e-4f;
 };
 
+// Inline: at every vertex; the texture coordinates are read only for a
+// textured material (an out-of-line call took them by value, reloading them
+// from the stored interaction).
+inline Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si) const {
+    const Material& m = desc_.materials[size_t(si.material)];
+    switch (m.type) {
+        case MaterialType::Diffuse:
+            return Bsdf::diffuse(m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv)
+                                                : m.albedo);
+        case MaterialType::Mirror:
+            return Bsdf::mirror(m.albedo);
+        case MaterialType::Dielectric:
+            return Bsdf::dielectric(m.ior);
+        case MaterialType::Conductor:
+            return Bsdf::conductor(m.eta, m.k, m.roughness);
+    }
+    return Bsdf::diffuse(m.albedo);
+}
+
 }  // namespace pathlab

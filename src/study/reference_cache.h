@@ -25,13 +25,18 @@ struct Reference {
 
 // Bumped whenever the renderer's output for the same inputs changes, so stale
 // references are never reused.
-inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-3";
+inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-4";
 
 // Hash of what determines the reference's pixels: the scene as loaded (camera,
 // materials, textures, geometry), the scene file's bytes for a file scene, the
 // resolution, depth, Russian roulette, and the reference's spp, sampler and seed.
 std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& source,
                               const StudySpec& spec);
+
+// Hash of the scene alone, as loaded (the part of referenceCacheKey that does
+// not depend on the spec): what a study records per scene so that --resume
+// can refuse a scene whose contents changed since the study began.
+std::string sceneContentHash(const SceneDescription& scene, const StudyScene& source);
 
 class ReferenceCache {
   public:
