@@ -3,6 +3,7 @@
 // problem, create no output, and leave an output already there unchanged.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -58,6 +59,30 @@ const BadInput kCases[] = {
      "out.png", "--max-depth must be between 0 and 1024, got 100000000000"},
     {"negative threads", "render --scene cornell-box --threads -1 -o {dir}/out.png", "out.png",
      "threads must be between 0 (all cores) and 4096, got -1"},
+    {"negative seed", "render --scene cornell-box --seed -1 -o {dir}/out.png", "out.png",
+     "--seed must be an integer between 0 and 18446744073709551615, got '-1'"},
+    {"absurd seed", "render --scene cornell-box --seed 99999999999999999999 -o {dir}/out.png",
+     "out.png",
+     "--seed must be an integer between 0 and 18446744073709551615, got '99999999999999999999'"},
+    {"absurd size in a scene", "render --scene {dir}/huge-size.json -o {dir}/out.png", "out.png",
+     "{dir}/huge-size.json: resolution[0]: must be between 1 and 16384, got 65536"},
+    {"scene mesh from an empty OBJ", "render --scene {dir}/empty-obj.json -o {dir}/out.png",
+     "out.png", "{dir}/empty-obj.json: meshes[0].obj: OBJ file '{dir}/empty.obj' has no faces"},
+    {"scene mesh from a file that is no OBJ",
+     "render --scene {dir}/garbage-obj.json -o {dir}/out.png", "out.png",
+     "{dir}/garbage-obj.json: meshes[0].obj: OBJ file '{dir}/garbage.obj' has no faces"},
+    {"scene mesh from a missing OBJ", "render --scene {dir}/missing-obj.json -o {dir}/out.png",
+     "out.png", "{dir}/missing-obj.json: meshes[0].obj: file '{dir}/missing.obj' does not exist"},
+    {"scene mesh from a directory", "render --scene {dir}/dir-obj.json -o {dir}/out.png", "out.png",
+     "{dir}/dir-obj.json: meshes[0].obj: '{dir}/objdir' is not a regular file"},
+    {"texture with a NaN texel", "render --scene {dir}/nan-texture.json -o {dir}/out.png",
+     "out.png",
+     "{dir}/nan-texture.json: materials.m.texture: texture '{dir}/nan-texel.pfm' has a NaN or "
+     "infinite texel at (1, 0)"},
+    {"texture with a negative texel", "render --scene {dir}/negative-texture.json -o {dir}/out.png",
+     "out.png",
+     "{dir}/negative-texture.json: materials.m.texture: texture '{dir}/negative-texel.pfm' has a "
+     "negative texel at (2, 1)"},
     {"output directory missing", "render --scene cornell-box -o {dir}/no/such/out.png", "",
      "cannot write '{dir}/no/such/out.png': directory '{dir}/no/such' does not exist"},
     {"output under a file", "render --scene cornell-box -o {dir}/a.exr/out.png", "",
@@ -83,6 +108,32 @@ const BadInput kCases[] = {
      "map.png", "'{dir}/truncated.pfm' is truncated"},
     {"unknown metric", "compare {dir}/a.exr {dir}/a.exr --metric ssim", "",
      "--metric: ssim not in {mse,rmse,relmse,psnr,flip,all}"},
+    {"absurd pixels per degree",
+     "compare {dir}/a.exr {dir}/a.exr --ppd 1e30 --error-map {dir}/map.png", "map.png",
+     "--ppd must be a number of pixels per degree between 1 and 1000, got '1e30'"},
+    {"NaN pixels per degree", "compare {dir}/a.exr {dir}/a.exr --ppd nan --error-map {dir}/map.png",
+     "map.png", "--ppd must be a number of pixels per degree between 1 and 1000, got 'nan'"},
+    {"zero pixels per degree", "compare {dir}/a.exr {dir}/a.exr --ppd 0 --error-map {dir}/map.png",
+     "map.png", "--ppd must be a number of pixels per degree between 1 and 1000, got '0'"},
+    {"pixels per degree that are no number",
+     "compare {dir}/a.exr {dir}/a.exr --ppd abc --error-map {dir}/map.png", "map.png",
+     "--ppd must be a number of pixels per degree between 1 and 1000, got 'abc'"},
+    {"points: pixel beyond any image",
+     "points --sampler sobol --count 4 --dims 0,1 --pixel 9999999,9999999 -o {dir}/pts.csv",
+     "pts.csv", "--pixel must lie in an image between 1x1 and 16384x16384, got '9999999,9999999'"},
+    {"points: absurd spp",
+     "points --sampler pmj02 --count 4 --dims 0,1 --spp 2000000000 -o {dir}/pts.csv", "pts.csv",
+     "--spp must be between 1 and 16777216, got 2000000000"},
+    {"points: zero spp", "points --sampler pmj02 --count 4 --dims 0,1 --spp 0 -o {dir}/pts.csv",
+     "pts.csv", "--spp must be between 1 and 16777216, got 0"},
+    {"points: zero resolution",
+     "points --sampler sobol --count 4 --dims 0,1 --resolution 0x0 -o {dir}/pts.csv", "pts.csv",
+     "--resolution must be between 1x1 and 16384x16384, got '0x0'"},
+    {"points: one dimension twice", "points --sampler sobol --count 4 --dims 1,1 -o {dir}/pts.csv",
+     "pts.csv", "--dims must name two different dimensions, got '1,1'"},
+    {"points: negative seed",
+     "points --sampler sobol --count 4 --dims 0,1 --seed -1 -o {dir}/pts.csv", "pts.csv",
+     "--seed must be an integer between 0 and 18446744073709551615, got '-1'"},
     {"missing study spec", "study {dir}/missing.toml -o {dir}/study", "study",
      "study spec '{dir}/missing.toml' does not exist or is not a file"},
     {"malformed TOML spec", "study {dir}/broken.toml -o {dir}/study", "study",
@@ -100,6 +151,13 @@ const BadInput kCases[] = {
      "{dir}/absurd-size.toml:4: key 'resolution[0]' must be between 1 and 16384, got 1000000"},
     {"unknown preset", "study --preset nope -o {dir}/study", "study",
      "unknown preset 'nope' (known: seed, quick, full)"},
+    {"absurd study threads", "study {dir}/ok.toml -o {dir}/study --threads 5000", "study",
+     "--threads must be between 0 (all cores) and 4096, got 5000"},
+    {"a spec's scene that cannot be loaded", "study {dir}/bad-scene.toml -o {dir}/study", "study",
+     "{dir}/bad-scene.toml:1: key 'scenes[0]' names a scene that cannot be loaded: "
+     "{dir}/bad-fov.json: camera.fovY: must be in (0, 180) degrees"},
+    {"study directory that is a file", "study {dir}/ok.toml -o {dir}/a.exr", "",
+     "'{dir}/a.exr' is not a directory: -o/--output must name the study directory"},
     {"study directory in use", "study --preset quick -o {dir}/used", "",
      "'{dir}/used' is not empty: add --resume to continue the study in it, or choose another "
      "directory"},
@@ -109,6 +167,8 @@ const BadInput kCases[] = {
     {"no study to report", "report {dir}/used", "",
      "'{dir}/used' is not a study directory (no "
      "results.sqlite)"},
+    {"bench of an unknown scene", "bench --scene nope --no-scaling", "",
+     "unknown scene 'nope': neither a built-in scene (cornell-box, wolf) nor an existing file"},
 };
 
 std::string substituted(std::string text, const std::string& dir) {
@@ -125,8 +185,48 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     return out;
 }
 
+// A valid scene with `extra` keys added, for the scene rows.
+std::string sceneWith(const std::string& extra) {
+    return R"({"camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "fovY": 40},
+      "lights": [{"type": "quad", "vertices": [[0,3,0], [1,3,0], [1,3,1], [0,3,1]],
+                  "emission": 10}])" +
+           extra + "}";
+}
+
+// A 4x2 texture whose texel `texel` has `value` in its green channel.
+void writeTexture(const fs::path& path, int texel, float value) {
+    Image image(4, 2);
+    std::fill(image.rgb.begin(), image.rgb.end(), 0.5f);
+    image.rgb[size_t(3 * texel + 1)] = value;
+    writeImage(path.string(), image);
+}
+
 class BadInputTable : public ::testing::Test {
   protected:
+    template <typename Put>
+    void putScenes(const Put& put) {
+        put("huge-size.json", sceneWith(R"(, "resolution": [65536, 65536])"));
+        put("empty.obj", "");
+        put("garbage.obj", "this is not an OBJ file\n\x01\x02\n");
+        fs::create_directory(dir / "objdir");
+        for (const char* name : {"empty", "garbage", "missing"})
+            put(std::string(name) + "-obj.json",
+                sceneWith(R"(, "meshes": [{"obj": ")" + std::string(name) + R"(.obj"}])"));
+        put("dir-obj.json", sceneWith(R"(, "meshes": [{"obj": "objdir"}])"));
+        writeTexture(dir / "nan-texel.pfm", 1, std::numeric_limits<float>::quiet_NaN());
+        writeTexture(dir / "negative-texel.pfm", 6, -0.25f);
+        for (const char* name : {"nan", "negative"})
+            put(std::string(name) + "-texture.json",
+                sceneWith(R"(, "materials": {"m": {"type": "diffuse", "texture": ")" +
+                          std::string(name) +
+                          R"(-texel.pfm"}},
+                "meshes": [{"material": "m", "quads": [[[-1,0,-1], [-1,0,1], [1,0,1], [1,0,-1]]]}])"));
+        std::string badFov = sceneWith("");
+        badFov.replace(badFov.find("\"fovY\": 40"), 10, "\"fovY\": 0");
+        put("bad-fov.json", badFov);
+        put("bad-scene.toml", "scenes = [\"bad-fov.json\"]\nsamplers = [\"halton\"]\nspp = [1]\n");
+    }
+
     void SetUp() override {
         dir = testing::scratchDirectory("bad-input");
         const auto put = [&](const std::string& name, const std::string& text) {
@@ -155,6 +255,7 @@ class BadInputTable : public ::testing::Test {
         put("absurd-spp.toml", spec + "spp = [1000000000000]\n");
         put("absurd-size.toml", spec + "spp = [1]\nresolution = [1000000, 1000000]\n");
         put("ok.toml", spec + "spp = [1]\n");
+        putScenes(put);
         fs::create_directory(dir / "other");
         put("other/spec.toml", spec + "spp = [1]\nmax_depth = 3\n");
         fs::create_directory(dir / "used");
@@ -199,6 +300,7 @@ TEST_F(BadInputTable, OneLineExitCodeTwoNothingWrittenNothingLost) {
             const auto r = testing::runPathlab(args, dir);
             EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
             EXPECT_EQ(r.errLines(), 1) << args << "\n" << r.err;
+            EXPECT_EQ(r.out, "") << args;  // nothing measured or printed first
             const std::string line = r.err.substr(0, r.err.find('\n'));
             if (std::getenv("PATHLAB_PRINT_BAD_INPUT") && !existing)
                 std::printf("%s\t%s\t%s\n", c.input, args.c_str(), line.c_str());

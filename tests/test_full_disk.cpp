@@ -86,8 +86,12 @@ TEST(FullDisk, StudyStopsCleanlyAndResumesOnceThereIsRoom) {
         expectOneNoSpaceLine(full.err, out);
         // Nothing half-written; the database sound and every row's images
         // there (read with room again: a reader of a WAL database writes).
-        EXPECT_EQ(testing::temporariesUnder(out), std::vector<std::string>{});
-        testing::expectEveryImageComplete(out, 32, 32);
+        // A disk that filled while the study's first files were written
+        // leaves no directory at all.
+        if (fs::exists(out)) {
+            EXPECT_EQ(testing::temporariesUnder(out), std::vector<std::string>{});
+            testing::expectEveryImageComplete(out, 32, 32);
+        }
         small.removeFiller();
         if (fs::exists(out / "results.sqlite")) {
             EXPECT_EQ(testing::integrityCheck(out / "results.sqlite"), "ok");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "study/analysis.h"
+#include "study/cell_metrics.h"
 
 namespace pathlab {
 namespace {
@@ -85,6 +86,20 @@ TEST(StudyAnalysis, TimeAndErrorInterpolationEdges) {
     EXPECT_NEAR(*errorAtTime(curve, std::sqrt(2.0)), std::sqrt(0.5), 1e-12);
     EXPECT_FALSE(errorAtTime(curve, 0.5).has_value());
     EXPECT_FALSE(errorAtTime(curve, 8.0).has_value());
+}
+
+// A frame whose brightest 4% is an emitter (luminance 100) over grey walls
+// (luminance 0.1): the view is exposed for the walls, whose luminance lands
+// at 0.9, not for the emitter (which the 99th percentile would pick).
+TEST(ViewingExposure, PutsTheWallsNotAVisibleLightAtNinetyPercent) {
+    Image img(10, 10);
+    for (int i = 0; i < 100; ++i) img.set(i % 10, i / 10, Vec3f(i < 4 ? 100.0f : 0.1f));
+    EXPECT_NEAR(viewingExposure(img), std::log2(0.9 / 0.1), 1e-5);
+    // Under the walls' level the 95th percentile is what sets it.
+    for (int i = 4; i < 90; ++i) img.set(i % 10, i / 10, Vec3f(0.01f));
+    EXPECT_NEAR(viewingExposure(img), std::log2(0.9 / 0.1), 1e-5);
+    for (int i = 4; i < 100; ++i) img.set(i % 10, i / 10, Vec3f(0.01f));
+    EXPECT_NEAR(viewingExposure(img), std::log2(0.9 / 0.01), 1e-5);
 }
 
 }  // namespace

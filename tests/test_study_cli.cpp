@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -152,6 +153,129 @@ TEST(StudyCli, FinishedWorkIsNeverOverwritten) {
         runPathlab("study " + changed.string() + " -o " + (dir / "s").string() + " --resume", dir);
     EXPECT_EQ(other.exitCode, 2);
     EXPECT_NE(other.err.find("max_depth"), std::string::npos) << other.err;
+    fs::remove_all(dir);
+}
+
+// Names and contents of every file under `dir`.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        out[entry.path().string()] =
+            entry.is_regular_file() ? testing::slurpFile(entry.path()) : "<directory>";
+    return out;
+}
+
+// `-o ''` names no directory: it must not mean the current one, whose
+// results.csv and spec.toml a study would overwrite.
+TEST(StudyCli, EmptyOutputIsRefusedAndTheCurrentDirectoryUntouched) {
+    const auto dir = testing::scratchDirectory("study-empty-output");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(dir, "tiny.toml", testing::tinySpec());
+    std::ofstream(dir / "results.csv") << "someone's results\n";
+    const auto before = snapshot(dir);
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir);
+    const auto r = runPathlab("study " + spec.string() + " -o ''", dir);
+    fs::current_path(previous);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(r.err, "pathlab: error: -o/--output must name the study directory, got ''\n");
+    EXPECT_EQ(snapshot(dir), before);
+    fs::remove_all(dir);
+}
+
+// A study whose scene file was edited since it began would mix cells of two
+// scenes; resuming it is refused like resuming with a changed spec.
+TEST(StudyCli, ResumeRefusesAChangedSceneFile) {
+    const auto dir = testing::scratchDirectory("study-scene-changed");
+    testing::usePrivateCache(dir);
+    const std::string scene = R"({"camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "fovY": 40},
+      "materials": {"grey": {"type": "diffuse", "albedo": 0.5}},
+      "meshes": [{"material": "grey", "quads": [[[-1,0,-1], [-1,0,1], [1,0,1], [1,0,-1]]]}],
+      "lights": [{"type": "quad", "vertices": [[0,3,0], [1,3,0], [1,3,1], [0,3,1]],
+                  "emission": EMISSION}]})";
+    const auto writeScene = [&](const std::string& emission) {
+        std::string text = scene;
+        text.replace(text.find("EMISSION"), 8, emission);
+        std::ofstream(dir / "box.json") << text;
+    };
+    writeScene("10");
+    const auto spec =
+        testing::writeSpec(dir, "box.toml",
+                           "scenes = [\"box.json\"]\nsamplers = [\"independent\"]\nspp = [1]\n"
+                           "resolution = [8, 8]\n[reference]\nspp = 4\n");
+    const auto out = dir / "s";
+    const std::string args = "study " + spec.string() + " -o " + out.string() + " --resume";
+    ASSERT_EQ(runPathlab(args, dir).exitCode, 0);
+    // Unchanged: resumed as before.
+    EXPECT_EQ(runPathlab(args, dir).exitCode, 0);
+
+    writeScene("20");
+    fs::remove(out / "images/box/independent/spp1-seed0.png");
+    const auto before = snapshot(out);
+    const auto r = runPathlab(args, dir);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(r.err, "pathlab: error: '" + out.string() + "' holds a study whose scene 'box' (" +
+                         (dir / "box.json").string() +
+                         ") has changed since it began: choose another directory\n");
+    EXPECT_EQ(snapshot(out), before);
+    fs::remove_all(dir);
+}
+
+// A run killed after creating results.sqlite but before its first commit
+// leaves a database without tables (SQLite creates the file empty); the
+// resumed run takes it as a study not yet begun, not as a broken one.
+TEST(StudyCli, ResumeTakesADatabaseKilledBeforeItsTables) {
+    const auto dir = testing::scratchDirectory("study-empty-database");
+    testing::usePrivateCache(dir);
+    const auto spec =
+        testing::writeSpec(dir, "t.toml",
+                           "scenes = [\"cornell-box\"]\nsamplers = [\"independent\"]\nspp = [1]\n"
+                           "resolution = [8, 8]\n[reference]\nspp = 4\n");
+    const auto out = dir / "s";
+    ASSERT_EQ(runPathlab("study " + spec.string() + " -o " + out.string(), dir).exitCode, 0);
+    const std::string specToml = testing::slurpFile(out / "spec.toml");
+    fs::remove_all(out);
+    fs::create_directories(out / "references");
+    std::ofstream(out / "spec.toml") << specToml;
+    std::ofstream(out / "results.sqlite");  // zero bytes: an empty database
+    const auto r = runPathlab("study " + spec.string() + " -o " + out.string() + " --resume", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(testing::readCells(out).size(), 1u);
+    fs::remove_all(dir);
+}
+
+// Nothing is created when the study is refused after its spec was read: a
+// scene that does not load, an impossible thread count.
+TEST(StudyCli, RefusedStudyLeavesNoDirectory) {
+    const auto dir = testing::scratchDirectory("study-refused");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(dir, "tiny.toml", testing::tinySpec());
+    const auto r = runPathlab(
+        "study " + spec.string() + " -o " + (dir / "s").string() + " --threads 5000", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.errLines(), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "s"));
+    fs::remove_all(dir);
+}
+
+// A file where the report's directory goes is the user's: refused before
+// anything is built, and left as it was, with nothing beside it.
+TEST(StudyCli, ReportRefusesAFileWhereItsDirectoryGoes) {
+    const auto dir = testing::scratchDirectory("study-report-file");
+    testing::usePrivateCache(dir);
+    const auto spec =
+        testing::writeSpec(dir, "t.toml",
+                           "scenes = [\"cornell-box\"]\nsamplers = [\"independent\"]\nspp = [1]\n"
+                           "resolution = [8, 8]\n[reference]\nspp = 4\n");
+    const auto out = dir / "s";
+    ASSERT_EQ(runPathlab("study " + spec.string() + " -o " + out.string(), dir).exitCode, 0);
+    std::ofstream(out / "report") << "notes\n";
+    const auto before = snapshot(out);
+    const auto r = runPathlab("report " + out.string(), dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pathlab: error: '" + (out / "report").string() +
+                         "' is not a directory: move it away, the report is written there\n");
+    EXPECT_EQ(snapshot(out), before);
     fs::remove_all(dir);
 }
 

@@ -81,8 +81,7 @@ nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double render
         {"recorded_rays", rays.size()}, {"raw_rays_per_second", modes}, {"efficiency", efficiency}};
 }
 
-nlohmann::json benchScene(const std::string& name, const BenchOptions& o) {
-    RenderScene scene(loadScene(name));
+nlohmann::json benchScene(const std::string& name, RenderScene& scene, const BenchOptions& o) {
     const RenderStats st = render(scene, settingsFor(o, "independent", o.threads)).stats;
     say(o, "%-12s %dx%d %3d spp  %8.3f s  %10.4g paths/s  %10.4g rays/s  (%d threads)\n",
         name.c_str(), o.size, o.size, o.spp, st.seconds, double(st.paths) / st.seconds,
@@ -233,10 +232,16 @@ nlohmann::json samplerShares(const BenchOptions& o) {
 }
 
 void runBench(const BenchOptions& o) {
+    // Loaded first: a scene that cannot be loaded stops the bench before
+    // anything is measured or printed.
+    std::vector<std::unique_ptr<RenderScene>> scenes;
+    for (const std::string& name : o.scenes)
+        scenes.push_back(std::make_unique<RenderScene>(loadScene(name)));
     nlohmann::json out;
     out["memory"] = memoryPerMillionTriangles(o);
     out["scenes"] = nlohmann::json::array();
-    for (const std::string& name : o.scenes) out["scenes"].push_back(benchScene(name, o));
+    for (size_t i = 0; i < scenes.size(); ++i)
+        out["scenes"].push_back(benchScene(o.scenes[i], *scenes[i], o));
     if (o.samplers) out["samplers"] = samplerShares(o);
     if (o.json) std::cout << out.dump(2) << "\n";
 }

@@ -21,8 +21,28 @@ struct CompareArgs {
     bool json = false;
     std::string errorMap;
     bool ldr = false, hdr = false;
-    float ppd = 0;  // 0: the default viewing conditions
+    std::string ppd;  // "": the default viewing conditions; else parsePpd
 };
+
+// FLIP's filters grow with the pixels per degree (and with them the memory
+// and the time), so the value is bounded to what a display or print can be
+// viewed at: from 1 (a coarse projector from close by) to 1000 (a fine print
+// from afar). Read as text: CLI11 turns "nan" into a number.
+constexpr double kMinPpd = 1, kMaxPpd = 1000;
+
+float parsePpd(const std::string& text) {
+    size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || !(v >= kMinPpd && v <= kMaxPpd))
+        throw InputError("--ppd must be a number of pixels per degree between 1 and 1000, got '" +
+                         text + "'");
+    return float(v);
+}
 
 struct CompareResults {
     double mse = 0, rmse = 0, relmse = 0, psnr = 0;
@@ -34,7 +54,8 @@ bool wants(const CompareArgs& a, const char* metric) {
     return a.metric == "all" || a.metric == metric;
 }
 
-CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const Image& test) {
+CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const Image& test,
+                              float ppd) {
     CompareResults out;
     if (args.metric != "flip") {
         out.hasPixelMetrics = true;
@@ -48,7 +69,7 @@ CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const I
         options.mode = args.ldr   ? flip::Mode::Ldr
                        : args.hdr ? flip::Mode::Hdr
                                   : flipModeForFiles(args.reference, args.test);
-        if (args.ppd > 0) options.ppd = args.ppd;
+        if (ppd > 0) options.ppd = ppd;
         out.flip = std::make_unique<flip::Result>(flip::evaluate(ref, test, options));
     }
     return out;
@@ -111,12 +132,14 @@ void printText(const CompareArgs& args, const CompareResults& r) {
 }
 
 void runCompare(const CompareArgs& args) {
+    // Refused before the images are read; 0 keeps FLIP's default.
+    const float ppd = args.ppd.empty() ? 0.0f : parsePpd(args.ppd);
     // Fail before the work if the error map cannot be written.
     if (!args.errorMap.empty()) checkWritable(args.errorMap);
     const Image ref = readImage(args.reference);
     const Image test = readImage(args.test);
     requireComparable(ref, test, args.reference, args.test);
-    const CompareResults results = computeMetrics(args, ref, test);
+    const CompareResults results = computeMetrics(args, ref, test, ppd);
     if (!args.errorMap.empty())
         writeErrorMap(args.errorMap, results.flip->errorMap, results.flip->width,
                       results.flip->height);
@@ -145,9 +168,9 @@ void addCompareCommand(CLI::App& app) {
         cmd->add_flag("--hdr", args->hdr, "Force HDR-FLIP (exposure range from the reference)");
     ldr->excludes(hdr);
     cmd->add_option(
-           "--ppd", args->ppd,
-           "FLIP pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 3840 px display)")
-        ->check(CLI::PositiveNumber);
+        "--ppd", args->ppd,
+        "FLIP pixels per degree, 1 to 1000 (default 67.02: 0.7 m from a 0.7 m wide 3840 px "
+        "display)");
     cmd->callback([args] { runCompare(*args); });
 }
 

@@ -10,8 +10,10 @@
 #include <memory>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -21,9 +23,21 @@
 namespace pathlab::cli {
 namespace {
 
+// The renderer's limit on samples per pixel (validateRenderSettings).
+constexpr int64_t kMaxSpp = int64_t(1) << 24;
+
 struct PointsOptions {
     std::string sampler, dims, pixel = "0,0", resolution, output;
+    std::string seed = "0";  // parseSeed
     int count = 0;
+    int64_t spp = 0;        // read wide, so an absurd count is refused by range
+    bool sppGiven = false;  // else the sampler is built for --count samples
+};
+
+// The options, checked and converted: what the sampler is built from.
+struct PointsRequest {
+    int dimX = 0, dimY = 1;
+    Vec2i pixel, resolution;
     int spp = 0;
     uint64_t seed = 0;
 };
@@ -82,10 +96,12 @@ std::string svgDrawing(const std::vector<Vec2f>& pts, const std::vector<double>&
       << py(1) << "\" stroke=\"#888\" stroke-dasharray=\"4 4\"/>\n<polyline fill=\"none\" "
       << "stroke=\"#1f5fbf\" stroke-width=\"1.5\" points=\"";
     for (int r = 1; r <= f; ++r) s << px(r) << ',' << py(spectrum[r]) << ' ';
+    // The caption in two lines: one would run past the drawing's right edge.
     s << "\"/>\n<text x=\"" << right << "\" y=\"" << top + panel + 18
-      << "\">radially averaged power spectrum: frequency 0.." << f
-      << " (dashed: white noise), power 0.." << ymax << "</text>\n<text x=\"" << left << "\" y=\""
-      << top + panel + 18 << "\">points in [0,1)^2</text>\n</svg>\n";
+      << "\">radially averaged power spectrum, frequency 0.." << f << "</text>\n<text x=\"" << right
+      << "\" y=\"" << top + panel + 34 << "\">power 0.." << ymax
+      << " (dashed: white noise, 1)</text>\n<text x=\"" << left << "\" y=\"" << top + panel + 18
+      << "\">points in [0,1)^2</text>\n</svg>\n";
     return s.str();
 }
 
@@ -133,28 +149,57 @@ Image pngDrawing(const std::vector<Vec2f>& pts, const std::vector<double>& spect
     return img;
 }
 
+std::string sizeRange() {
+    return "between 1x1 and " + std::to_string(kMaxImageSide) + "x" + std::to_string(kMaxImageSide);
+}
+
+// The image the sampler maps onto: --resolution, or the smallest holding
+// the pixel; never larger than an image pathlab renders.
+Vec2i pointsResolution(const PointsOptions& o, Vec2i pixel) {
+    if (o.resolution.empty()) {
+        if (pixel.x >= kMaxImageSide || pixel.y >= kMaxImageSide)
+            throw InputError("--pixel must lie in an image " + sizeRange() + ", got '" + o.pixel +
+                             "'");
+        return {pixel.x + 1, pixel.y + 1};
+    }
+    const auto [w, h] = parsePair(o.resolution, "--resolution", 'x');
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+        throw InputError("--resolution must be " + sizeRange() + ", got '" + o.resolution + "'");
+    if (pixel.x >= w || pixel.y >= h)
+        throw InputError("--pixel " + o.pixel + " is not inside --resolution " + o.resolution);
+    return {w, h};
+}
+
+PointsRequest pointsRequest(const PointsOptions& o) {
+    if (o.count < 1 || o.count > (1 << 22))
+        throw InputError("--count must be between 1 and 4194304, got " + std::to_string(o.count));
+    if (o.sppGiven && (o.spp < 1 || o.spp > kMaxSpp))
+        throw InputError("--spp must be between 1 and " + std::to_string(kMaxSpp) + ", got " +
+                         std::to_string(o.spp));
+    PointsRequest r;
+    std::tie(r.dimX, r.dimY) = parsePair(o.dims, "--dims", ',');
+    // One dimension against itself is a diagonal line, never a layout.
+    if (r.dimX == r.dimY)
+        throw InputError("--dims must name two different dimensions, got '" + o.dims + "'");
+    const auto [px, py] = parsePair(o.pixel, "--pixel", ',');
+    r.pixel = {px, py};
+    r.resolution = pointsResolution(o, r.pixel);
+    r.spp = o.sppGiven ? int(o.spp) : o.count;
+    r.seed = parseSeed(o.seed);
+    return r;
+}
+
 void runPoints(const PointsOptions& o) {
     const std::string ext = extensionOf(o.output);
     if (ext != ".csv" && ext != ".svg" && ext != ".png")
         throw InputError("-o must end in .csv, .svg or .png, got '" + o.output + "'");
-    if (o.count < 1 || o.count > (1 << 22))
-        throw InputError("--count must be between 1 and 4194304, got " + std::to_string(o.count));
-    const auto [i, j] = parsePair(o.dims, "--dims", ',');
-    const auto [px, py] = parsePair(o.pixel, "--pixel", ',');
-    const int spp = o.spp > 0 ? o.spp : o.count;
-    if (o.spp < 0) throw InputError("--spp must be positive, got " + std::to_string(o.spp));
-    Vec2i resolution{px + 1, py + 1};
-    if (!o.resolution.empty()) {
-        const auto [w, h] = parsePair(o.resolution, "--resolution", 'x');
-        if (w < 1 || h < 1 || px >= w || py >= h)
-            throw InputError("--pixel " + o.pixel + " is not inside --resolution " + o.resolution);
-        resolution = {w, h};
-    }
-    AnySampler sampler = makeSampler(o.sampler, SamplerConfig{spp, o.seed, resolution});
+    const PointsRequest r = pointsRequest(o);
+    const int i = r.dimX, j = r.dimY, px = r.pixel.x, py = r.pixel.y;
+    AnySampler sampler = makeSampler(o.sampler, SamplerConfig{r.spp, r.seed, r.resolution});
 
     std::vector<Vec2f> pts(size_t(o.count));
-    const Vec2i pixel{px, py};
-    const int dimX = i, dimY = j;  // C++20 lambdas may capture bindings; clang 14 cannot
+    const Vec2i pixel = r.pixel;
+    const int dimX = i, dimY = j;
     std::visit(
         [&](auto& s) {
             for (int k = 0; k < o.count; ++k) pts[k] = sampleDimensions(s, pixel, k, dimX, dimY);
@@ -177,7 +222,7 @@ void runPoints(const PointsOptions& o) {
         const std::string title = o.sampler + ", dims " + std::to_string(i) + "," +
                                   std::to_string(j) + ", pixel " + std::to_string(px) + "," +
                                   std::to_string(py) + ", " + std::to_string(o.count) +
-                                  " points, seed " + std::to_string(o.seed);
+                                  " points, seed " + std::to_string(r.seed);
         writeFileAtomic(o.output, svgDrawing(pts, spectrum, title));
     } else {
         writeImage(o.output, pngDrawing(pts, spectrum));
@@ -194,17 +239,22 @@ void addPointsCommand(CLI::App& app) {
     cmd->add_option("--sampler", opts->sampler, "Sampler name (see `pathlab samplers`)")
         ->required();
     cmd->add_option("--count", opts->count, "Number of samples (indices 0..N-1)")->required();
-    cmd->add_option("--dims", opts->dims, "Two dimensions I,J of the layout (0,1 = pixel)")
+    cmd->add_option("--dims", opts->dims,
+                    "Two different dimensions I,J of the layout (0,1 = pixel)")
         ->required();
     cmd->add_option("--pixel", opts->pixel, "Pixel X,Y")->capture_default_str();
     cmd->add_option("--seed", opts->seed, "Seed")->capture_default_str();
-    cmd->add_option("--spp", opts->spp, "Samples per pixel of the sampler (default: --count)");
+    CLI::Option* spp = cmd->add_option(
+        "--spp", opts->spp, "Samples per pixel of the sampler, 1 to 16777216 (default: --count)");
     cmd->add_option(
         "--resolution", opts->resolution,
         "Image size WxH the sampler maps onto (default: the smallest containing the pixel)");
     cmd->add_option("-o,--output", opts->output, "Output file: .csv (index,x,y), .svg or .png")
         ->required();
-    cmd->callback([opts] { runPoints(*opts); });
+    cmd->callback([opts, spp] {
+        opts->sppGiven = spp->count() > 0;
+        runPoints(*opts);
+    });
 }
 
 }  // namespace pathlab::cli

@@ -4,6 +4,7 @@
 #include <regex>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "render/renderer.h"
@@ -19,6 +20,7 @@ constexpr int64_t kMaxDepth = 1024;
 struct RenderOptions {
     std::string scene, output, size;
     RenderSettings settings;
+    std::string seed = std::to_string(settings.seed);  // parseSeed
     // Read wide, so an absurd count is refused by range, not by a conversion.
     int64_t spp = 16, maxDepth = 8;
     bool noRoulette = false;
@@ -57,6 +59,7 @@ void runRender(RenderOptions& o) {
     s.russianRoulette = !o.noRoulette;
     s.samplesPerPixel = checkedInt(o.spp, 1, kMaxSamplesPerPixel, "--spp");
     s.maxDepth = checkedInt(o.maxDepth, 0, kMaxDepth, "--max-depth");
+    s.seed = parseSeed(o.seed);
     if (!o.size.empty()) s.resolution = parseSize(o.size);
     validateRenderSettings(s);
     checkWritable(o.output);  // fail before rendering, not after
@@ -85,7 +88,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--sampler", opts->settings.sampler, "Sampler name (see `pathlab samplers`)")
         ->capture_default_str();
     cmd->add_option("--spp", opts->spp, "Samples per pixel")->capture_default_str();
-    cmd->add_option("--seed", opts->settings.seed, "Seed of the sampler's randomisation")
+    cmd->add_option("--seed", opts->seed, "Seed of the sampler's randomisation")
         ->capture_default_str();
     cmd->add_option("--size", opts->size, "Image size WIDTHxHEIGHT (default: the scene's)");
     cmd->add_option("--max-depth", opts->maxDepth, "Maximum path depth (1 = direct lighting only)")

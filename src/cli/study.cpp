@@ -21,9 +21,10 @@ struct StudyArgs {
 void runStudyCommand(const StudyArgs& a) {
     if (a.spec.empty() == a.preset.empty())
         throw InputError("give either a study spec file or --preset NAME (one of them)");
-    if (a.threads < 0) throw InputError("--threads must be 0 (all cores) or more");
+    const StudyOptions options{a.output, a.resume, a.threads};
+    checkStudyOptions(options);  // before the spec: they are wrong whatever it says
     const StudySpec spec = a.preset.empty() ? loadStudySpec(a.spec) : presetSpec(a.preset);
-    runStudy(spec, StudyOptions{a.output, a.resume, a.threads});
+    runStudy(spec, options);
 }
 
 }  // namespace

@@ -116,7 +116,7 @@ def plot_vs_spp(ax, study, scene, metric):
             _draw_series(ax, s.spp, s, sampler)
     if metric in ("mse", "relmse"):
         _slope_guide(ax, study, scene, metric)
-    floor = study.noise_floor(scene) if metric == "mse" else None
+    floor = study.noise_floor(scene, metric) if metric in ("mse", "relmse") else None
     if floor:
         ax.axhline(floor, color=REFERENCE_COLOUR, linestyle="-", linewidth=0.8, alpha=0.7,
                    label="reference noise floor")
@@ -177,8 +177,10 @@ def convergence_figures(study, scene, directory, slug):
     for suffix, draw in PLOTS:
         fig, ax = plt.subplots(figsize=(4.6, 3.4))
         draw(ax, study, scene)
-        # Beside the axes, where it never hides a line.
-        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+        # Beside the axes, where it never hides a line; none when nothing is
+        # labelled (matplotlib would warn on stderr).
+        if ax.get_legend_handles_labels()[1]:
+            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
         names.append(save(fig, directory, f"{slug}-{suffix}"))
     fig, axes = plt.subplots(2, 2, figsize=(9.2, 6.8))
     for ax, (_, draw) in zip(axes.flat, PLOTS):

@@ -147,8 +147,8 @@ def figure_block(base, caption):
 def table_columns(study, scene):
     spps = study.spps(scene)
     ratio_spps = [n for n in TABLE_SPPS if n in spps]
-    # The study's largest spp too, when it goes beyond 64 or misses them all.
-    if spps[-1] not in ratio_spps and (spps[-1] > TABLE_SPPS[-1] or not ratio_spps):
+    # The study's largest spp too, where samplers differ the most.
+    if spps[-1] not in ratio_spps:
         ratio_spps.append(spps[-1])
     has_independent = "independent" in study.samplers(scene)
     cols = [("MSE slope", lambda a: a.get("slope_mse")),
@@ -164,6 +164,18 @@ def table_columns(study, scene):
     return cols
 
 
+def clear_winner(analysis, samplers, spp, best):
+    """True when the best sampler's highest MSE over the seeds at `spp` is below every
+    other sampler's lowest: a difference the seeds' spread cannot explain."""
+    def cell(s):
+        return (analysis["samplers"][s].get("by_spp") or {}).get(str(spp)) or {}
+    if len(best) != 1 or cell(best[0]).get("mse_max") is None:
+        return False
+    top = cell(best[0])["mse_max"]
+    others = [cell(s).get("mse_min") for s in samplers if s != best[0]]
+    return all(low is not None and top < low for low in others)
+
+
 def results_table(study, scene):
     analysis = study.analysis[scene]
     samplers = study.samplers(scene)
@@ -176,12 +188,16 @@ def results_table(study, scene):
     values = {s: [v[i] for i in keep] for s, v in values.items()}
     # Lower is better in every column: steeper (more negative) slopes, smaller
     # ratios, shorter times, smaller errors.
+    ratio_spp = {i: int(name.split("@")[1].split()[0]) for i, (name, _) in enumerate(cols)
+                 if "@" in name}
     winners = []
     for i in range(len(cols)):
         present = [values[s][i] for s in samplers if values[s][i] is not None]
-        winners.append(min(present) if present else None)
-    ratio_spp = {i: int(name.split("@")[1].split()[0]) for i, (name, _) in enumerate(cols)
-                 if "@" in name}
+        best = min(present) if present else None
+        if i in ratio_spp and best is not None and not clear_winner(
+                analysis, samplers, ratio_spp[i], [s for s in samplers if values[s][i] == best]):
+            best = None
+        winners.append(best)
     head = "".join(f"<th>{esc(name)}</th>" for name, _ in cols)
     rows = []
     for s in samplers:
@@ -201,7 +217,8 @@ def results_table(study, scene):
             f"reaches at {analysis['target_spp']} spp. " if target else "")
     note += ("Slopes are least-squares fits of log error against log spp over the mean of the "
              "seeds (−1 is plain Monte Carlo). Ratios below 1 beat independent random numbers. "
-             "Best value per column highlighted.")
+             "Best value per column highlighted; in a ratio column only when the best "
+             "sampler's MSE over the seeds stays below every other sampler's (ranges apart).")
     correction = study.runner_analysis.get("mse_correction")
     if correction:
         note += f" MSE correction: {esc(correction.rstrip('.'))}."
@@ -274,8 +291,9 @@ def scene_section(study, scene, data, figure_names):
   </div>
   <h3>Comparison grid</h3>
   <div class="grid-host"></div>
-  <p class="note">The yellow square marks the region with the most error, summed over every
-  sampler ({esc(", ".join(str(n) for n in data['gridSpps']))} spp); it is shown magnified below
+  <p class="note">The yellow square marks the region with the most error (mean HDR-FLIP against
+  the reference, summed over every sampler at {esc(", ".join(str(n) for n in data['gridSpps']))}
+  spp); it is shown magnified below
   each image. Paper version: <a href="figures/{esc(s)}-grid.svg">SVG</a> ·
   <a href="figures/{esc(s)}-grid.png">PNG</a>.</p>
   <h3>Image comparer</h3>
@@ -315,7 +333,10 @@ def gallery(samplers, pathlab, figures_dir):
                      f'</figcaption><img src="figures/{base}.svg" alt="{esc(name)} points"></figure>')
     return ('<p class="note">256 samples of one pixel in dimensions 0 and 1 (the position inside '
             'the pixel), and their radially averaged power spectrum: white noise is flat at 1, '
-            'blue noise has little power at low frequencies.</p>'
+            'a well-stratified set has little power at low frequencies. <b>blue-noise</b> and '
+            '<b>zsobol</b> are blue across pixels, not within one pixel\'s samples: what shows '
+            'their design is the spectrum of the error image (docs/samplers.md), not these '
+            'points.</p>'
             f'<div class="gallery">{"".join(cards)}</div>')
 
 
@@ -333,10 +354,16 @@ def header(study):
         ("resolution", f"{info.get('width', '?')}×{info.get('height', '?')}"),
         ("max depth", info.get("max_depth", "?")),
         ("reference", f"{info.get('reference_spp', '?')} spp, "
-                      f"{info.get('reference_sampler', '?')}"),
+                      f"{info.get('reference_sampler', '?')}, seed {info.get('reference_seed', '?')}"),
+        ("Russian roulette", "on" if info.get("russian_roulette", "true") == "true" else "off"),
+        ("threads", ", ".join(str(n) for n in sorted({int(c["threads"]) for c in study.cells
+                                                       if c.get("threads") not in (None, "")}))
+         or "?"),
         ("commit", info.get("git_commit", "?")),
         ("created", info.get("created_at", "?")),
     ]
+    if study.time_budget():
+        meta.insert(-2, ("time budget", f"{fmt(study.time_budget())} s"))
     dl = "".join(f"<div><dt>{esc(k)}</dt><dd>{esc(v)}</dd></div>" for k, v in meta)
     nav = "".join(f'<a href="#scene-{esc(slug(s))}">{esc(s)}</a>' for s in scenes)
     return (f'<header><h1>Sampling study: {esc(info.get("name") or os.path.basename(study.dir))}'

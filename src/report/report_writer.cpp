@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 extern char** environ;
@@ -82,6 +83,16 @@ void requireStudyDirectory(const fs::path& dir) {
     const fs::path database = dir / "results.sqlite";
     if (!fs::is_regular_file(database))
         throw InputError("'" + name + "' is not a study directory (no results.sqlite)");
+    // The report is built beside DIR/report and renamed into place, and the
+    // database is opened read-write (see countCells): both need DIR writable,
+    // which is worth saying as such rather than as a database that fails.
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        throw InputError(writeErrorMessage((dir / "report").string(), errno));
+    std::error_code ec;
+    const fs::path report = dir / "report";
+    if (fs::exists(fs::symlink_status(report, ec)) && !fs::is_directory(report, ec))
+        throw InputError("'" + report.string() +
+                         "' is not a directory: move it away, the report is written there");
     const long long cells = countCells(database);
     if (cells < 0)
         throw InputError("'" + database.string() + "' is not a study database (no cells table)");

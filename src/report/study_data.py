@@ -126,12 +126,13 @@ class Study:
             secs.append(sum(float(c["seconds"]) for c in cells) / len(cells))
         return Series(spp, mean, lo, hi, secs)
 
-    def noise_floor(self, scene):
+    def noise_floor(self, scene, metric="mse"):
+        """The reference's own error in `metric` (mse or relmse), or None."""
         a = self.runner_analysis.get("scenes", {}).get(scene, {})
-        if a.get("noise_floor_mse") is not None:
-            return float(a["noise_floor_mse"])
+        if a.get(f"noise_floor_{metric}") is not None:
+            return float(a[f"noise_floor_{metric}"])
         ref = self.references.get(scene) or {}
-        return ref.get("noise_mse")
+        return ref.get(f"noise_{metric}")
 
     def time_budget(self):
         try:

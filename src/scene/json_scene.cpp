@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "scene/mesh_utils.h"
 #include "scene/obj_loader.h"
 #include "scene/texture_loader.h"
@@ -92,10 +93,14 @@ class Node {
         if (!(v > 0)) fail("must be positive");
         return v;
     }
-    int integer() const {
+    // An image side: the same limit as `render --size`, so that a scene file
+    // cannot ask for an image the renderer cannot hold.
+    int imageSide() const {
         if (!j_.is_number_integer()) fail(std::string("expected an integer, got ") + typeName(j_));
         const auto v = j_.get<int64_t>();
-        if (v < 1 || v > 1 << 16) fail("must be between 1 and 65536");
+        if (v < 1 || v > kMaxImageSide)
+            fail("must be between 1 and " + std::to_string(kMaxImageSide) + ", got " +
+                 std::to_string(v));
         return int(v);
     }
     bool boolean() const {
@@ -130,7 +135,10 @@ class Node {
         const std::string s = string();
         if (s.empty()) fail("empty file name");
         const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : ctx_.baseDir / s;
-        if (!fs::is_regular_file(p)) fail("file '" + p.string() + "' does not exist");
+        std::error_code ec;
+        const fs::file_status status = fs::status(p, ec);
+        if (!fs::exists(status)) fail("file '" + p.string() + "' does not exist");
+        if (!fs::is_regular_file(status)) fail("'" + p.string() + "' is not a regular file");
         return p;
     }
 
@@ -278,11 +286,19 @@ void parseMesh(const Node& n, size_t index, Builder& b) {
         n.keys({"obj", "material", "transform"});
         const size_t first = b.scene.meshes.size();
         const int forced = n.has("material") ? b.material(n["material"]) : -1;
+        const Node obj = n["obj"];
+        const std::string path = obj.file().string();  // fails with its own prefix
         try {
-            appendObj(b.scene, n["obj"].file().string(), forced);
+            appendObj(b.scene, path, forced);
         } catch (const InputError& e) {
-            n["obj"].fail(e.what());
+            obj.fail(e.what());
         }
+        // As for an OBJ given as the scene itself: a file with no faces (empty,
+        // or not OBJ at all, whose lines tinyobjloader skips) is a mistake.
+        size_t triangles = 0;
+        for (size_t i = first; i < b.scene.meshes.size(); ++i)
+            triangles += b.scene.meshes[i].triangleCount();
+        if (triangles == 0) obj.fail("OBJ file '" + path + "' has no faces");
         if (n.has("transform")) {
             const Affine xf = parseTransform(n["transform"]);
             for (size_t i = first; i < b.scene.meshes.size(); ++i)
@@ -463,7 +479,7 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     if (root.has("resolution")) {
         const Node r = root["resolution"];
         if (r.size() != 2) r.fail("expected [width, height]");
-        s.resolution = {r.at(0).integer(), r.at(1).integer()};
+        s.resolution = {r.at(0).imageSide(), r.at(1).imageSide()};
     }
     if (root.has("environment")) s.environment = root["environment"].colour();
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
@@ -20,13 +21,34 @@ Texture textureFromImage(const Image& image) {
     return t;
 }
 
+namespace {
+
+// A texture is an albedo: a NaN, infinite or negative texel would be a
+// colour no material can have (docs/scene-format.md), and would reach the
+// image as NaN samples the renderer silently discards.
+void requireValidTexels(const Texture& t, const std::string& path) {
+    for (size_t i = 0; i < t.texels.size(); ++i) {
+        const Vec3f c = t.texels[i];
+        const bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+        if (finite && c.x >= 0 && c.y >= 0 && c.z >= 0) continue;
+        throw InputError("texture '" + path + "' has a " +
+                         (finite ? "negative" : "NaN or infinite") + " texel at (" +
+                         std::to_string(i % size_t(t.width)) + ", " +
+                         std::to_string(i / size_t(t.width)) + ")");
+    }
+}
+
+}  // namespace
+
 Texture loadTexture(const std::string& path) {
     if (!std::filesystem::is_regular_file(path))
         throw InputError("texture '" + path + "' does not exist");
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return textureFromImage(ext == ".dds" ? readDds(path) : readImage(path));
+    Texture t = textureFromImage(ext == ".dds" ? readDds(path) : readImage(path));
+    requireValidTexels(t, path);
+    return t;
 }
 
 }  // namespace pathlab

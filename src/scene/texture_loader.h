@@ -11,7 +11,8 @@ namespace pathlab {
 Texture textureFromImage(const Image& image);
 
 // PNG (sRGB, decoded to linear), EXR and PFM (linear) through readImage, and
-// DXT1/DXT5 DDS (sRGB). Throws InputError naming the file otherwise.
+// DXT1/DXT5 DDS (sRGB). Throws InputError naming the file otherwise, and for
+// a NaN, infinite or negative texel.
 Texture loadTexture(const std::string& path);
 
 }  // namespace pathlab

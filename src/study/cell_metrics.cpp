@@ -79,10 +79,10 @@ float viewingExposure(const Image& reference) {
         if (std::isfinite(y)) luminance.push_back(y);
     }
     if (luminance.empty()) return 0.0f;
-    const size_t k = std::min(luminance.size() - 1, size_t(0.99 * double(luminance.size())));
+    const size_t k = std::min(luminance.size() - 1, size_t(0.95 * double(luminance.size())));
     std::nth_element(luminance.begin(), luminance.begin() + long(k), luminance.end());
-    const float p99 = luminance[k];
-    return p99 > 0 ? std::log2(0.9f / p99) : 0.0f;
+    const float p95 = luminance[k];
+    return p95 > 0 ? std::log2(0.9f / p95) : 0.0f;
 }
 
 std::vector<float> relativeSquaredErrorMap(const Image& reference, const Image& test) {

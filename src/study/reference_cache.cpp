@@ -72,14 +72,9 @@ nlohmann::json readJson(const fs::path& path) {
     return nlohmann::json::parse(in);  // throws on a damaged file
 }
 
-}  // namespace
-
-std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& source,
-                              const StudySpec& spec) {
-    ContentHash h;
-    h.text(kReferenceCacheVersion);
-    // The loaded description covers built-in scenes and their assets (the
-    // wolf's mesh and texture) as well as files and what they include.
+// The loaded description covers built-in scenes and their assets (the
+// wolf's mesh and texture) as well as files and what they include.
+void hashScene(ContentHash& h, const SceneDescription& scene, const StudyScene& source) {
     const Camera& c = scene.camera;
     hashVec(h, c.eye);
     hashVec(h, c.target);
@@ -88,6 +83,21 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     hashMaterials(h, scene);
     hashGeometry(h, scene);
     if (source.source != source.name) h.file(source.source);  // a file scene
+}
+
+}  // namespace
+
+std::string sceneContentHash(const SceneDescription& scene, const StudyScene& source) {
+    ContentHash h;
+    hashScene(h, scene, source);
+    return h.hex();
+}
+
+std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& source,
+                              const StudySpec& spec) {
+    ContentHash h;
+    h.text(kReferenceCacheVersion);
+    hashScene(h, scene, source);
     h.integer(uint64_t(spec.resolution.x));
     h.integer(uint64_t(spec.resolution.y));
     h.integer(uint64_t(spec.maxDepth));

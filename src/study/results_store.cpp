@@ -262,6 +262,36 @@ void ResultsStore::setStudyValues(const std::map<std::string, std::string>& valu
     }
 }
 
+std::map<std::string, std::string> ResultsStore::readStudyValues(const std::string& path) {
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+        const std::string why = db ? sqlite3_errmsg(db) : "out of memory";
+        sqlite3_close(db);
+        throw InputError("cannot open study database '" + path + "': " + why);
+    }
+    sqlite3_busy_timeout(db, 10000);
+    std::map<std::string, std::string> out;
+    try {
+        // A run killed between creating the file and its first commit leaves
+        // a database without tables: it records no study yet, so nothing to
+        // compare (the resumed run creates the schema as a new one would).
+        bool hasTable = false;
+        {
+            Statement t(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'study'", path);
+            hasTable = t.step() && t.integer(0) > 0;
+        }
+        if (hasTable) {
+            Statement s(db, "SELECT key, value FROM study", path);
+            while (s.step()) out[s.text(0)] = s.text(1);
+        }
+    } catch (const std::exception& e) {
+        sqlite3_close(db);
+        throw InputError("'" + path + "' is not a usable study database: " + e.what());
+    }
+    sqlite3_close(db);
+    return out;
+}
+
 std::map<std::string, std::string> ResultsStore::studyValues() const {
     Statement s(db_, "SELECT key, value FROM study", path_);
     std::map<std::string, std::string> out;

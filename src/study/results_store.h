@@ -61,6 +61,12 @@ class ResultsStore {
     void setStudyValues(const std::map<std::string, std::string>& values);
     std::map<std::string, std::string> studyValues() const;
 
+    // The study table of an existing database, read without changing the
+    // directory: a read-only handle would leave empty -wal and -shm files
+    // behind, a read-write one removes them when it closes. Throws InputError
+    // when the file cannot be opened or is not a study database.
+    static std::map<std::string, std::string> readStudyValues(const std::string& path);
+
   private:
     void exec(const char* sql) const;
     std::vector<CellRow> queryCells(const std::string& where, const CellKey* key) const;

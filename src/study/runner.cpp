@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <map>
 #include <memory>
 
@@ -36,6 +37,7 @@ struct SceneJob {
     StudyScene scene;
     std::unique_ptr<RenderScene> render;
     std::string cacheKey;
+    std::string contentHash;  // sceneContentHash
 };
 
 // Everything a cell needs besides its key.
@@ -102,27 +104,86 @@ void createDirectories(const fs::path& dir) {
     if (ec) throw InputError(writeErrorMessage(dir.string(), ec.value()));
 }
 
-void prepareDirectory(const StudySpec& spec, const StudyOptions& o) {
+// The key under which the study table keeps a scene's content hash.
+std::string sceneHashKey(const std::string& scene) {
+    return "scene_hash." + scene;
+}
+
+// A resumed study must go on with the scenes it began with: a scene file
+// edited since would mix cells of two scenes in one comparison. Studies
+// recorded before the hashes were kept have none, and are taken as they are.
+void requireSameScenes(const fs::path& dir, const std::vector<SceneJob>& jobs) {
+    const fs::path database = dir / "results.sqlite";
+    std::error_code ec;
+    if (!fs::is_regular_file(database, ec)) return;
+    const auto values = ResultsStore::readStudyValues(database.string());
+    for (const SceneJob& job : jobs) {
+        const auto stored = values.find(sceneHashKey(job.scene.name));
+        if (stored != values.end() && stored->second != job.contentHash)
+            throw InputError("'" + dir.string() + "' holds a study whose scene '" + job.scene.name +
+                             "' (" + job.scene.source +
+                             ") has changed since it began: choose another directory");
+    }
+}
+
+// Every check of the study directory, before anything is written to it.
+void checkDirectory(const StudySpec& spec, const std::vector<SceneJob>& jobs,
+                    const StudyOptions& o) {
     const fs::path& dir = o.dir;
     const bool empty = directoryIsEmpty(dir);
     if (!empty && !o.resume)
         throw InputError("'" + dir.string() +
                          "' is not empty: add --resume to continue the study in it, or choose "
                          "another directory");
-    if (!empty) {
-        if (!fs::is_regular_file(dir / "spec.toml"))
-            throw InputError("'" + dir.string() + "' is not a study directory (no spec.toml)");
-        const std::string diff =
-            firstSpecDifference(loadStudySpec((dir / "spec.toml").string()), spec);
-        if (!diff.empty())
-            throw InputError("'" + dir.string() + "' holds a study whose '" + diff +
-                             "' differs from this spec: choose another directory");
-    }
-    createDirectories(dir / "references");
-    // What a killed run was writing: never complete, so never used.
-    removeStaleTemporaries(dir);
-    writeTextFileAtomic(dir / "spec.toml", studySpecToToml(spec));
+    if (empty) return;
+    if (!fs::is_regular_file(dir / "spec.toml"))
+        throw InputError("'" + dir.string() + "' is not a study directory (no spec.toml)");
+    const std::string diff = firstSpecDifference(loadStudySpec((dir / "spec.toml").string()), spec);
+    if (!diff.empty())
+        throw InputError("'" + dir.string() + "' holds a study whose '" + diff +
+                         "' differs from this spec: choose another directory");
+    requireSameScenes(dir, jobs);
 }
+
+// The outermost directory of `dir` that does not exist yet, or "" when `dir`
+// exists: what removing the study's files must remove.
+fs::path firstMissingDirectory(const fs::path& dir) {
+    std::error_code ec;
+    fs::path missing;
+    for (fs::path p = fs::absolute(dir).lexically_normal(); !p.empty() && !fs::exists(p, ec);
+         p = p.parent_path()) {
+        missing = p;
+        if (p == p.parent_path()) break;
+    }
+    return missing;
+}
+
+// The files a study begins with. Should writing them fail (a full disk, a
+// directory that cannot be written), what was created is removed again, so
+// the directory is left as it was.
+class DirectorySetup {
+  public:
+    explicit DirectorySetup(const fs::path& dir) : dir_(dir), missing_(firstMissingDirectory(dir)) {
+        std::error_code ec;
+        for (const char* name : kEntries) existed_.push_back(fs::exists(dir / name, ec));
+    }
+    void undo() const {
+        std::error_code ec;
+        if (!missing_.empty()) {
+            fs::remove_all(missing_, ec);
+            return;
+        }
+        for (size_t i = 0; i < std::size(kEntries); ++i)
+            if (!existed_[i]) fs::remove_all(dir_ / kEntries[i], ec);
+    }
+
+  private:
+    static constexpr const char* kEntries[] = {"references",         "spec.toml",
+                                               "results.sqlite",     "results.sqlite-wal",
+                                               "results.sqlite-shm", "results.sqlite-journal"};
+    fs::path dir_, missing_;
+    std::vector<bool> existed_;
+};
 
 std::string joined(const std::vector<std::string>& items) {
     std::string out;
@@ -130,10 +191,10 @@ std::string joined(const std::vector<std::string>& items) {
     return out;
 }
 
-void recordStudy(const StudySpec& spec, ResultsStore& store) {
+void recordStudy(const StudySpec& spec, const std::vector<SceneJob>& jobs, ResultsStore& store) {
     const auto existing = store.studyValues();
     const auto created = existing.find("created_at");
-    store.setStudyValues({
+    std::map<std::string, std::string> values{
         {"name", spec.name},
         {"created_at", created != existing.end() ? created->second : isoTimestampUtc()},
         {"git_commit", sourceGitCommit()},
@@ -147,17 +208,47 @@ void recordStudy(const StudySpec& spec, ResultsStore& store) {
         {"time_budget_seconds",
          spec.timeBudgetSeconds ? nlohmann::json(*spec.timeBudgetSeconds).dump() : ""},
         {"metrics", joined(spec.metrics)},
-    });
+    };
+    for (const SceneJob& job : jobs) values[sceneHashKey(job.scene.name)] = job.contentHash;
+    store.setStudyValues(values);
 }
 
+// Loads every scene before the study directory is touched. A scene that
+// cannot be loaded is reported against the spec line that names it.
 std::vector<SceneJob> loadScenes(const StudySpec& spec) {
     std::vector<SceneJob> jobs;
     for (const StudyScene& s : spec.scenes) {
-        SceneDescription description = loadScene(s.source);
+        SceneDescription description;
+        try {
+            description = loadScene(s.source);
+        } catch (const InputError& e) {
+            if (s.origin.empty()) throw;
+            throw InputError(s.origin + " names a scene that cannot be loaded: " + e.what());
+        }
         const std::string key = referenceCacheKey(description, s, spec);
-        jobs.push_back({s, std::make_unique<RenderScene>(std::move(description)), key});
+        const std::string hash = sceneContentHash(description, s);
+        jobs.push_back({s, std::make_unique<RenderScene>(std::move(description)), key, hash});
     }
     return jobs;
+}
+
+// Creates the directory and its first files, and opens the results.
+std::unique_ptr<ResultsStore> beginStudyFiles(const StudySpec& spec,
+                                              const std::vector<SceneJob>& jobs,
+                                              const StudyOptions& o) {
+    const DirectorySetup setup(o.dir);
+    try {
+        createDirectories(o.dir / "references");
+        // What a killed run was writing: never complete, so never used.
+        removeStaleTemporaries(o.dir);
+        writeTextFileAtomic(o.dir / "spec.toml", studySpecToToml(spec));
+        auto store = std::make_unique<ResultsStore>((o.dir / "results.sqlite").string());
+        recordStudy(spec, jobs, *store);
+        return store;
+    } catch (...) {
+        setup.undo();
+        throw;
+    }
 }
 
 // From the cache, else from this study's own copy (a resumed study whose
@@ -363,12 +454,26 @@ void finishStudy(const StudySpec& spec, const StudyOptions& o, ResultsStore& sto
 
 }  // namespace
 
+void checkStudyOptions(const StudyOptions& options) {
+    if (options.dir.empty()) throw InputError("-o/--output must name the study directory, got ''");
+    std::error_code ec;
+    if (fs::exists(options.dir, ec) && !fs::is_directory(options.dir, ec))
+        throw InputError("'" + options.dir.string() +
+                         "' is not a directory: -o/--output must name the study directory");
+    if (options.threads < 0 || options.threads > kMaxStudyThreads)
+        throw InputError("--threads must be between 0 (all cores) and " +
+                         std::to_string(kMaxStudyThreads) + ", got " +
+                         std::to_string(options.threads));
+}
+
 StudyRun runStudy(const StudySpec& spec, const StudyOptions& options) {
     const auto start = std::chrono::steady_clock::now();
-    prepareDirectory(spec, options);
-    ResultsStore store((options.dir / "results.sqlite").string());
-    recordStudy(spec, store);
+    // Everything that can be refused is refused before the directory is touched.
+    checkStudyOptions(options);
     const std::vector<SceneJob> jobs = loadScenes(spec);
+    checkDirectory(spec, jobs, options);
+    const std::unique_ptr<ResultsStore> owned = beginStudyFiles(spec, jobs, options);
+    ResultsStore& store = *owned;
     const int totalCells =
         int(spec.scenes.size() * spec.samplers.size() * spec.spp.size()) * spec.seeds;
     StudyProgress progress(totalCells, totalWork(spec, jobs));

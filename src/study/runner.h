@@ -24,8 +24,17 @@ struct StudyRun {
     nlohmann::ordered_json analysis;
 };
 
-// Throws InputError for a directory that cannot be used (not empty without
-// resume, another study's directory, not writable) before any rendering.
+// The renderer's limit (validateRenderSettings).
+inline constexpr int kMaxStudyThreads = 4096;
+
+// Throws InputError for options that cannot work whatever the spec: no
+// directory named, a file where the directory should be, a thread count
+// out of range.
+void checkStudyOptions(const StudyOptions& options);
+
+// Throws InputError for bad options, a scene that cannot be loaded, or a
+// directory that cannot be used (not empty without resume, another study's
+// directory or a changed scene, not writable), before anything is written.
 StudyRun runStudy(const StudySpec& spec, const StudyOptions& options);
 
 }  // namespace pathlab

@@ -128,7 +128,9 @@ class SpecReader {
 StudyScene SpecReader::scene(const toml::node& n, const std::string& key) const {
     const std::string v = string(n, key);
     const std::vector<std::string> builtins = builtinSceneNames();
-    if (std::find(builtins.begin(), builtins.end(), v) != builtins.end()) return {v, v};
+    const std::string origin =
+        source_ + ":" + std::to_string(n.source().begin.line) + ": key '" + key + "'";
+    if (std::find(builtins.begin(), builtins.end(), v) != builtins.end()) return {v, v, origin};
     fs::path p(v);
     if (p.is_relative()) p = baseDir_ / p;
     std::error_code ec;
@@ -139,7 +141,7 @@ StudyScene SpecReader::scene(const toml::node& n, const std::string& key) const 
     const std::string ext = p.extension().string();
     if (ext != ".json" && ext != ".obj")
         fail(n.source(), key, "names '" + v + "': a scene file must be .json or .obj");
-    return {p.stem().string(), fs::absolute(p).lexically_normal().string()};
+    return {p.stem().string(), fs::absolute(p).lexically_normal().string(), origin};
 }
 
 std::vector<StudyScene> SpecReader::scenes(const toml::node& n) const {

@@ -26,9 +26,12 @@ struct ReferenceSpec {
 
 // One scene of a study: `name` names its rows and folders (the built-in name,
 // or the file's stem), `source` is what loadScene() gets (built-in name or
-// absolute path).
+// absolute path). `origin` says where the spec names it ("spec.toml:3: key
+// 'scenes[0]'", empty for a preset), so a scene that fails to load is
+// reported against the line that asked for it.
 struct StudyScene {
     std::string name, source;
+    std::string origin = {};
 };
 
 struct StudySpec {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace pathlab {
 namespace {
@@ -14,20 +15,24 @@ std::string format(const char* pattern, double v) {
     return buffer;
 }
 
-// The spp columns: 1, 8 and 64 when the study has them, else its first and last.
+// The spp columns: 1, 8 and 64 when the study has them (else its smallest),
+// and always its largest, where samplers differ the most.
 std::vector<std::string> ratioColumns(const Json& scene) {
     std::vector<std::string> spps;
     for (const auto& [name, sampler] : scene.at("samplers").items())
         for (const auto& item : sampler.at("by_spp").items())
             if (std::find(spps.begin(), spps.end(), item.key()) == spps.end())
                 spps.push_back(item.key());
+    if (spps.empty()) return {};
+    const auto byValue = [](const std::string& a, const std::string& b) {
+        return std::stol(a) < std::stol(b);
+    };
+    std::sort(spps.begin(), spps.end(), byValue);
     std::vector<std::string> out;
     for (const char* wanted : {"1", "8", "64"})
         if (std::find(spps.begin(), spps.end(), wanted) != spps.end()) out.push_back(wanted);
-    if (out.empty() && !spps.empty()) {
-        out.push_back(spps.front());
-        if (spps.size() > 1) out.push_back(spps.back());
-    }
+    if (out.empty()) out.push_back(spps.front());
+    if (out.back() != spps.back()) out.push_back(spps.back());
     return out;
 }
 
