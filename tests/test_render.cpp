@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/float_mode.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
@@ -120,6 +121,41 @@ TEST(Seeds, DifferentSeedsGiveDifferentImages) {
     s.seed = 1;
     const RenderOutput b = render(scene, s);
     EXPECT_NE(a.image.rgb, b.image.rgb);
+}
+
+// Inside the scope a denormal result is flushed to zero (and a denormal operand
+// read as zero); after it the thread's previous mode is back.
+TEST(FloatMode, ScopedFlushDenormalsFlushesAndRestores) {
+    volatile float tiny = 1e-30f, scale = 1e-10f;  // product 1e-40: a denormal
+    const float before = tiny * scale;
+    EXPECT_GT(before, 0.0f);
+    {
+        const ScopedFlushDenormals denormals;
+        EXPECT_EQ(tiny * scale, 0.0f);
+        volatile float denormal = 1e-40f;
+        EXPECT_EQ(denormal * 1.0f, 0.0f);
+    }
+    EXPECT_EQ(tiny * scale, before);
+}
+
+// A render sets the mode per tile: the same image whatever mode the caller
+// runs in, and the caller's mode untouched afterwards.
+TEST(FloatMode, RenderIgnoresAndRestoresTheCallersMode) {
+    RenderScene scene(cornellBoxScene());
+    RenderSettings s;
+    s.sampler = "sobol-owen";
+    s.samplesPerPixel = 4;
+    s.resolution = {24, 24};
+    s.threads = 1;
+    const Image plain = render(scene, s).image;
+    Image flushed;
+    {
+        const ScopedFlushDenormals denormals;
+        flushed = render(scene, s).image;
+    }
+    EXPECT_EQ(0, std::memcmp(plain.rgb.data(), flushed.rgb.data(), plain.rgb.size() * 4));
+    volatile float tiny = 1e-30f, scale = 1e-10f;
+    EXPECT_GT(tiny * scale, 0.0f) << "the render left flush-to-zero on";
 }
 
 TEST(RenderSettingsValidation, RejectsOutOfRangeValues) {

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "core/error.h"
+#include "core/float_mode.h"
 #include "core/thread_annotations.h"
 #include "render/camera.h"
 #include "render/path_integrator.h"
@@ -206,12 +207,15 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     static const char tasksStart = 0, tasksEnd = 0;
     const auto renderOneTile = [&](size_t t) {
         happensAfter(&tasksStart);
-        AnySampler sampler = prototype;
-        results[t] = std::visit(
-            [&](auto& s) {
-                return renderTile(scene, camera, s, tiles[t], integrator, checkpoints);
-            },
-            sampler);
+        {
+            const ScopedFlushDenormals denormals;  // as Embree asks (core/float_mode.h)
+            AnySampler sampler = prototype;
+            results[t] = std::visit(
+                [&](auto& s) {
+                    return renderTile(scene, camera, s, tiles[t], integrator, checkpoints);
+                },
+                sampler);
+        }
         progress.advance();
         happensBefore(&tasksEnd);
     };

@@ -8,6 +8,8 @@
 #include <chrono>
 #include <optional>
 
+#include "core/float_mode.h"
+
 namespace pathlab {
 namespace {
 
@@ -149,6 +151,7 @@ ReplayResult replayRays(const EmbreeAccel& accel, const std::vector<RecordedRay>
     const size_t chunks = (rays.size() + kChunk - 1) / kChunk;
     const auto start = std::chrono::steady_clock::now();
     tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        const ScopedFlushDenormals denormals;  // as the renderer traces them
         const size_t begin = c * kChunk, n = std::min(kChunk, rays.size() - begin);
         const RecordedRay* first = rays.data() + begin;
         switch (mode) {
