@@ -176,6 +176,22 @@ TEST(SamplingRoutines, QuarterPiCosSinMatchesLibmToAFewUlp) {
     EXPECT_LT(worst, 2.0);
 }
 
+TEST(SamplingRoutines, TurnCosSinMatchesLibmOverTheWholeCircle) {
+    double worst = 0;
+    for (int i = 0; i <= 400000; ++i) {
+        const float t = i == 400000 ? 1.0f : float(i / 400000.0);
+        const Vec2f cs = cosSinTurn(t);
+        const double angle = 2 * M_PI * double(t);
+        worst = std::max({worst, std::abs(cs.x - std::cos(angle)) / 0x1p-24,
+                          std::abs(cs.y - std::sin(angle)) / 0x1p-24});
+    }
+    // A few float spacings near 1: the remainder's angle is rounded once.
+    EXPECT_LT(worst, 4.0);
+    // Just below 1 is a sliver of a turn before the start, not after it.
+    EXPECT_LT(cosSinTurn(0x1.fffffep-1f).y, 0.0f);
+    EXPECT_GT(cosSinTurn(0x1p-20f).y, 0.0f);
+}
+
 TEST(SamplingRoutines, ConcentricDiskKeepsRadiusAndWedgeAngle) {
     // The mapping's definition (Shirley & Chiu 1997): square ring max(|x|,|y|)
     // = r goes to the circle of radius r, and each wedge's position along the

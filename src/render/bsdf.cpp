@@ -124,11 +124,10 @@ bool Bsdf::isSpecular() const {
            (kind_ == BsdfKind::Conductor && alpha_ < kSmoothAlpha);
 }
 
-Vec3f Bsdf::f(Vec3f wo, Vec3f wi) const {
+Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {
     if (isSpecular()) return Vec3f(0.0f);
     flipToUpper(wo, wi);
     if (wi.z <= 0 || wo.z <= 0) return Vec3f(0.0f);
-    if (kind_ == BsdfKind::Diffuse) return color_ * kInvPi;
     // Conductor: Torrance–Sparrow with GGX (pbrt-v4 eq. 9.33).
     Vec3f wm = wi + wo;
     if (dot(wm, wm) == 0) return Vec3f(0.0f);
@@ -138,11 +137,10 @@ Vec3f Bsdf::f(Vec3f wo, Vec3f wi) const {
     return F * (ggx.D(wm) * ggx.G(wo, wi) / (4 * wi.z * wo.z));
 }
 
-float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
+float Bsdf::pdfNonDiffuse(Vec3f wo, Vec3f wi) const {
     if (isSpecular()) return 0;
     flipToUpper(wo, wi);
     if (wi.z <= 0 || wo.z <= 0) return 0;
-    if (kind_ == BsdfKind::Diffuse) return cosineHemispherePdf(wi.z);
     Vec3f wm = wi + wo;
     if (dot(wm, wm) == 0) return 0;
     wm = normalize(wm);
@@ -151,16 +149,12 @@ float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
     return ggx.visibleD(wo, wm) / (4 * std::abs(dot(wo, wm)));
 }
 
-std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) const {
+std::optional<BsdfSample> Bsdf::sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u) const {
     if (wo.z == 0) return std::nullopt;
     const float side = wo.z < 0 ? -1.0f : 1.0f;
     switch (kind_) {
-        case BsdfKind::Diffuse: {
-            Vec3f wi = sampleCosineHemisphere(u);
-            wi.z *= side;
-            if (wi.z == 0) return std::nullopt;
-            return BsdfSample{wi, color_ * kInvPi, cosineHemispherePdf(std::abs(wi.z)), false};
-        }
+        case BsdfKind::Diffuse:
+            break;  // inline in bsdf.h
         case BsdfKind::Mirror: {
             const Vec3f wi{-wo.x, -wo.y, wo.z};
             return BsdfSample{wi, color_ / absCosTheta(wi), 1.0f, true};

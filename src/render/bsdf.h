@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/math.h"
+#include "render/sampling_routines.h"
 
 namespace pathlab {
 
@@ -37,6 +38,9 @@ class Bsdf {
     bool usesLobeSample() const { return kind_ == BsdfKind::Dielectric; }
     bool usesDirectionSample() const { return !isSpecular(); }
 
+    // The Lambertian case, nearly every vertex of the built-in scenes, is
+    // inline so that it is optimised with the integrator around it; the other
+    // materials are out-of-line calls.
     Vec3f f(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
     // uLobe chooses between lobes (reflection or transmission at glass); u
@@ -44,11 +48,40 @@ class Bsdf {
     std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
 
   private:
+    Vec3f fNonDiffuse(Vec3f wo, Vec3f wi) const;
+    float pdfNonDiffuse(Vec3f wo, Vec3f wi) const;
+    std::optional<BsdfSample> sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u) const;
+
     BsdfKind kind_ = BsdfKind::Diffuse;
     Vec3f color_{0.0f};       // albedo / reflectance
     Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index
     float alpha_ = 0;
 };
+
+// Lambertian reflection is two-sided: it scatters into the hemisphere wo lies
+// in (strictly: a direction in the surface plane gets nothing).
+inline bool strictlySameSide(Vec3f wo, Vec3f wi) {
+    return (wo.z > 0 && wi.z > 0) || (wo.z < 0 && wi.z < 0);
+}
+
+inline Vec3f Bsdf::f(Vec3f wo, Vec3f wi) const {
+    if (kind_ != BsdfKind::Diffuse) return fNonDiffuse(wo, wi);
+    return strictlySameSide(wo, wi) ? color_ * kInvPi : Vec3f(0.0f);
+}
+
+inline float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
+    if (kind_ != BsdfKind::Diffuse) return pdfNonDiffuse(wo, wi);
+    return strictlySameSide(wo, wi) ? cosineHemispherePdf(std::abs(wi.z)) : 0.0f;
+}
+
+inline std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) const {
+    if (kind_ != BsdfKind::Diffuse) return sampleNonDiffuse(wo, uLobe, u);
+    if (wo.z == 0) return std::nullopt;
+    Vec3f wi = sampleCosineHemisphere(u);
+    if (wo.z < 0) wi.z = -wi.z;
+    if (wi.z == 0) return std::nullopt;
+    return BsdfSample{wi, color_ * kInvPi, cosineHemispherePdf(std::abs(wi.z)), false};
+}
 
 // Unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 eq. 9.6);
 // eta = n_inside / n_outside, cosThetaI signed (negative: arriving from inside).

@@ -30,6 +30,26 @@ inline Vec2f cosSinQuarterPi(float x) {
     return {c, s * x};
 }
 
+// cos and sin of 2πt for t in [0, 1]: t is split into the nearest quarter
+// turn q/4 and a remainder r = t − q/4 in [−1/8, 1/8] (exact: the two are
+// within a factor of two of each other), cosSinQuarterPi gives the remainder's
+// angle 2πr, and the quarter turns swap and negate the pair. No libm call, and
+// no rounding of a large angle before the reduction.
+inline Vec2f cosSinTurn(float t) {
+    const int q = int(t * 4 + 0.5f);  // 0…4
+    const Vec2f cs = cosSinQuarterPi(2 * kPi * (t - float(q) * 0.25f));
+    switch (q & 3) {
+        case 0:
+            return cs;
+        case 1:
+            return {-cs.y, cs.x};
+        case 2:
+            return {-cs.x, -cs.y};
+        default:
+            return {cs.y, -cs.x};
+    }
+}
+
 // Shirley–Chiu concentric mapping: area-preserving and low-distortion. The
 // angle within a wedge is (π/4)·(ratio of the coordinates), so its cosine
 // and sine come from cosSinQuarterPi; the upper/lower wedges are the
@@ -58,8 +78,8 @@ inline float cosineHemispherePdf(float cosTheta) {
 inline Vec3f sampleUniformSphere(Vec2f u) {
     const float z = 1 - 2 * u.x;
     const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-    const float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    const Vec2f cs = cosSinTurn(u.y);  // of the azimuth 2π·u.y
+    return {r * cs.x, r * cs.y, z};
 }
 inline constexpr float uniformSpherePdf() {
     return kInv4Pi;
