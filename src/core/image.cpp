@@ -80,7 +80,11 @@ Image readExr(const std::string& path) {
 // one go, so a failure is reported with its cause (errno) for the target.
 std::string encodeExr(const Image& img) {
     Imf::Header header(img.width, img.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    // Uncompressed: a rendered float image is noise in its low mantissa bits,
+    // which ZIP shrinks by 2–3% (256² Cornell-box renders and a 4096-spp
+    // reference) at 30 ms per 256² image against 2–5 ms without, and a study
+    // writes one per cell. PIZ shrinks them by 0.5% in twice ZIP's time.
+    header.compression() = Imf::NO_COMPRESSION;
     for (const char* name : {"R", "G", "B"})
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     Imf::StdOSStream stream;
@@ -142,9 +146,12 @@ std::string encodePng(const Image& img, float exposure) {
     png.width = static_cast<png_uint_32>(img.width);
     png.height = static_cast<png_uint_32>(img.height);
     png.format = PNG_FORMAT_RGB;
-    png_alloc_size_t size = 0;
-    if (!png_image_write_get_memory_size(png, size, 0, buf.data(), 0, nullptr))
-        throw std::runtime_error(std::string("PNG encoder: ") + png.message);
+    // Fast zlib settings: a 256² view encodes in about 13 ms instead of 25–35,
+    // for files from 35% smaller to 45% larger (noisy renders grow, flat error
+    // maps shrink). One encoding into a buffer of the largest possible size:
+    // png_image_write_get_memory_size would encode the image a second time.
+    png.flags = PNG_IMAGE_FLAG_FAST;
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
     std::string bytes(size, '\0');
     if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, buf.data(), 0, nullptr))
         throw std::runtime_error(std::string("PNG encoder: ") + png.message);
