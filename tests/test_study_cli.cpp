@@ -221,6 +221,42 @@ TEST(StudyCli, ResumeRefusesAChangedSceneFile) {
     fs::remove_all(dir);
 }
 
+// `halton` unscrambled gives every seed the same image: the study renders it
+// once and gives each seed's cell that image and its measurements (the same
+// seconds: one render), while a randomised sampler's seeds differ.
+TEST(StudyCli, ASamplerTheSeedDoesNotRandomiseIsRenderedOncePerSpp) {
+    const auto dir = testing::scratchDirectory("study-deterministic");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(
+        dir, "d.toml",
+        "scenes = [\"cornell-box\"]\nsamplers = [\"halton\", \"independent\"]\n"
+        "spp = [1, 4]\nseeds = 3\nresolution = [16, 16]\n[reference]\nspp = 16\n");
+    const auto out = dir / "s";
+    const auto r = runPathlab("study " + spec.string() + " -o " + out.string(), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::map<std::pair<std::string, int>, std::vector<CellRow>> bySamplerSpp;
+    for (const CellRow& c : testing::readCells(out))
+        bySamplerSpp[{c.key.sampler, c.key.spp}].push_back(c);
+    ASSERT_EQ(bySamplerSpp.size(), 4u);
+    for (const auto& [what, rows] : bySamplerSpp) {
+        ASSERT_EQ(rows.size(), 3u);
+        for (size_t k = 1; k < rows.size(); ++k) {
+            const bool same =
+                testing::slurpFile(out / rows[k].image) == testing::slurpFile(out / rows[0].image);
+            if (what.first == "halton") {
+                EXPECT_TRUE(same) << rows[k].image;
+                EXPECT_EQ(rows[k].mse, rows[0].mse);
+                EXPECT_EQ(rows[k].flip, rows[0].flip);
+                EXPECT_EQ(rows[k].seconds, rows[0].seconds);
+            } else {
+                EXPECT_FALSE(same) << rows[k].image;
+                EXPECT_NE(rows[k].mse, rows[0].mse);
+            }
+        }
+    }
+    fs::remove_all(dir);
+}
+
 // A run killed after creating results.sqlite but before its first commit
 // leaves a database without tables (SQLite creates the file empty); the
 // resumed run takes it as a study not yet begun, not as a broken one.

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -61,10 +62,13 @@ double pixels(const StudySpec& spec) {
 
 // The samples a cell adds to the study. A progressive sampler's cells are
 // prefixes of one render (see planRenders), so each adds only the samples
-// beyond the next smaller spp of the list.
+// beyond the next smaller spp of the list; a sampler the seed does not
+// randomise is rendered for its first seed only, the others are copies.
 double cellWork(const StudySpec& spec, const CellKey& key) {
+    const SamplerInfo& info = samplerInfo(key.sampler);
+    if (!info.randomized && key.seed > 0) return pixels(spec) * kCellOverheadSpp;
     int previous = 0;
-    if (samplerInfo(key.sampler).progressive)
+    if (info.progressive)
         for (int spp : spec.spp)
             if (spp < key.spp) previous = std::max(previous, spp);
     return pixels(spec) * (key.spp - previous + kCellOverheadSpp);
@@ -323,24 +327,30 @@ std::string cellLabel(const CellKey& k) {
 // One render of the study: a cell, or all of a progressive sampler's missing
 // cells at one seed, the smaller spp taken as prefixes of the largest — the
 // same images as rendering each alone (RenderSettings::prefixSpp), for the
-// cost of the largest.
+// cost of the largest. A sampler the seed does not randomise (SamplerInfo::
+// randomized, tested) gives every seed the same image, so one render serves
+// all its missing seeds: their cells are the same image and measurements.
 struct CellRender {
     std::string sampler;
-    int seed = 0;
-    std::vector<int> spp;  // ascending
+    int seed = 0;                // the seed rendered: the smallest of `cells`
+    std::vector<int> spp;        // ascending: the render's spp and its prefixes
+    std::vector<CellKey> cells;  // what it completes, each spp of `spp` at least once
 };
 
 std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
     std::vector<CellRender> plan;
-    std::map<std::pair<std::string, int>, size_t> grouped;  // (sampler, seed) → plan index
+    // (sampler, seed or −1 for every seed, spp or −1 for every spp) → plan index
+    std::map<std::tuple<std::string, int, int>, size_t> grouped;
     for (const CellKey& key : todo) {
-        if (!samplerInfo(key.sampler).progressive) {
-            plan.push_back({key.sampler, key.seed, {key.spp}});
-            continue;
-        }
-        const auto [it, added] = grouped.try_emplace({key.sampler, key.seed}, plan.size());
-        if (added) plan.push_back({key.sampler, key.seed, {}});
-        plan[it->second].spp.push_back(key.spp);
+        const SamplerInfo& info = samplerInfo(key.sampler);
+        const auto group = std::make_tuple(key.sampler, info.randomized ? key.seed : -1,
+                                           info.progressive ? -1 : key.spp);
+        const auto [it, added] = grouped.try_emplace(group, plan.size());
+        if (added) plan.push_back({key.sampler, key.seed, {}, {}});
+        CellRender& r = plan[it->second];
+        r.seed = std::min(r.seed, key.seed);
+        if (std::find(r.spp.begin(), r.spp.end(), key.spp) == r.spp.end()) r.spp.push_back(key.spp);
+        r.cells.push_back(key);
     }
     for (CellRender& r : plan) std::sort(r.spp.begin(), r.spp.end());
     return plan;
@@ -358,6 +368,16 @@ MeasuredCell measureAndWriteCell(const Reference& ref, const CellMeter& meter, c
                                  const Image& image, double seconds, uint64_t nonFinite,
                                  const StudyContext& ctx) {
     MeasuredCell cell{key, seconds, nonFinite, meter.measure(image)};
+    writeCellImages(ctx.options.dir, key, image, ref, cell.metrics);
+    return cell;
+}
+
+// A cell whose image is another cell's (the same render, another seed of a
+// sampler the seed does not randomise): the same measurements, its own files.
+MeasuredCell copyMeasuredCell(const MeasuredCell& measured, const Reference& ref,
+                              const CellKey& key, const Image& image, const StudyContext& ctx) {
+    MeasuredCell cell = measured;
+    cell.key = key;
     writeCellImages(ctx.options.dir, key, image, ref, cell.metrics);
     return cell;
 }
@@ -406,13 +426,28 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
     // which finished first.
     createDirectories(
         (ctx.options.dir / cellStem({job.scene.name, cells.sampler, 1, 0})).parent_path());
-    std::vector<MeasuredCell> measured(images.size());
+    // Each spp is measured once, by its first cell; the cells of other seeds
+    // with the same image take those measurements.
+    std::vector<const CellKey*> first(images.size(), nullptr);
+    std::vector<size_t> imageOf(cells.cells.size());
+    for (size_t c = 0; c < cells.cells.size(); ++c) {
+        const auto at = std::find(cells.spp.begin(), cells.spp.end(), cells.cells[c].spp);
+        imageOf[c] = size_t(at - cells.spp.begin());
+        if (!first[imageOf[c]]) first[imageOf[c]] = &cells.cells[c];
+    }
+    std::vector<MeasuredCell> measured(cells.cells.size());
     tbb::parallel_for(size_t(0), images.size(), [&](size_t k) {
         const PrefixImage& p = images[k];
-        measured[k] =
-            measureAndWriteCell(ref, meter, {job.scene.name, cells.sampler, p.spp, cells.seed},
-                                p.image, p.seconds, p.nonFinite, ctx);
+        if (!first[k]) return;
+        const MeasuredCell m =
+            measureAndWriteCell(ref, meter, *first[k], p.image, p.seconds, p.nonFinite, ctx);
+        for (size_t c = 0; c < cells.cells.size(); ++c)
+            if (imageOf[c] == k)
+                measured[c] = &cells.cells[c] == first[k]
+                                  ? m
+                                  : copyMeasuredCell(m, ref, cells.cells[c], p.image, ctx);
     });
+    // Rows in the order of the plan: seeds, then spp, as the cells were listed.
     for (const MeasuredCell& cell : measured) commitCell(cell, ctx);
 }
 
