@@ -107,6 +107,28 @@ TEST(BlueNoiseSampler, NeighbouringPixelsGetBlueNoiseValues) {
     EXPECT_LT(band(s, 1, size / 8) / band(s, size / 4, size / 2), 0.3);
 }
 
+// The draws keep each dimension's rotation while the sample index stays in
+// one block of the texture's size: in any order of pixels, samples and
+// dimensions (past the cached ones too, and across blocks) they are the
+// lookup computed from scratch.
+TEST(BlueNoiseSampler, CachedDrawsEqualTheLookupInAnyOrder) {
+    BlueNoiseSampler sampler(SamplerConfig{512, 9, {64, 64}});
+    Pcg32 rng(11, 0);
+    for (int k = 0; k < 20000; ++k) {
+        const Vec2i p{int(rng.nextUInt() % 64), int(rng.nextUInt() % 64)};
+        const int index = int(rng.nextUInt() % 512);
+        const int d = int(rng.nextUInt() % 72);
+        sampler.startPixelSample(p, index, d);
+        if (rng.nextUInt() & 1) {
+            ASSERT_EQ(sampler.get1D(), sampler.definition(p, uint64_t(index), d));
+        } else {
+            const Vec2f u = sampler.get2D();
+            ASSERT_EQ(u.x, sampler.definition(p, uint64_t(index), d));
+            ASSERT_EQ(u.y, sampler.definition(p, uint64_t(index), d + 1));
+        }
+    }
+}
+
 TEST(Spectrum, PointSetSpectraOfGridAndRandomPoints) {
     // Random points: flat spectrum ≈ 1; the DC term equals N.
     Pcg32 rng(3, 0);

@@ -235,7 +235,7 @@ TEST(ZSobolDigits, CachedIndexAndDrawsMatchTheDigitByDigitReference) {
                 ZSobolSampler s(SamplerConfig{spp, seed, res});
                 Pcg32 rng(uint64_t(spp) * 1000 + uint64_t(res.x) + seed, 1);
                 Vec2i pixel{0, 0};
-                for (int step = 0; step < 300; ++step) {
+                for (int step = 0; step < 1500; ++step) {
                     // Mostly stay in one pixel, as the renderer does; sometimes
                     // jump, sometimes to a pixel seen before.
                     const uint32_t r = rng.nextUInt(8);

@@ -28,6 +28,8 @@
 // estimate keeps converging past S samples per pixel. Any number of dimensions.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <filesystem>
 #include <memory>
@@ -60,6 +62,30 @@ inline constexpr int kBlueNoiseTextureSize = 128;
 // The process-wide texture: cacheDirectory()/blue-noise-vc-128.bin.
 std::shared_ptr<const BlueNoiseTexture> defaultBlueNoiseTexture();
 
+namespace blue_noise {
+// What dimension d adds to the lookup's row and column: its place D in its
+// block and the vertex it belongs to, times the presentation's constants.
+struct LayoutTerms {
+    uint64_t row, col;
+};
+constexpr LayoutTerms layoutTerms(int d) {
+    const int vertex = dims::depthOfDimension(d);
+    const uint64_t depth = uint64_t(vertex < 0 ? 0 : vertex);
+    const uint64_t inBlock =
+        d < dims::kFirstBounce
+            ? uint64_t(d)
+            : uint64_t(dims::kFirstBounce + (d - dims::kFirstBounce) % dims::kDimsPerBounce);
+    return {inBlock * 100937 + depth * 133337, inBlock * 99523 + depth * 2549};
+}
+// A path of depth 8 draws 58 dimensions: the first 64 are tabulated.
+inline constexpr int kCachedDimensions = 64;
+inline constexpr std::array<LayoutTerms, kCachedDimensions> kLayoutTerms = [] {
+    std::array<LayoutTerms, kCachedDimensions> t{};
+    for (int d = 0; d < kCachedDimensions; ++d) t[size_t(d)] = layoutTerms(d);
+    return t;
+}();
+}  // namespace blue_noise
+
 class BlueNoiseSampler {
   public:
     explicit BlueNoiseSampler(const SamplerConfig& c)
@@ -69,6 +95,7 @@ class BlueNoiseSampler {
         offsetY_ = static_cast<uint32_t>((h >> 32) % uint64_t(texture_->size));
         const uint64_t size = uint64_t(texture_->size);
         sizeMask_ = (size & (size - 1)) == 0 ? size - 1 : 0;
+        std::fill(std::begin(rotationBlock_), std::end(rotationBlock_), ~uint64_t(0));
     }
 
     int samplesPerPixel() const { return spp_; }
@@ -85,23 +112,41 @@ class BlueNoiseSampler {
     }
     Vec2f getPixel2D() { return get2D(); }
 
-  private:
-    float sampleDimension(int d) const {
-        const uint64_t size = uint64_t(texture_->size);
-        const int vertex = dims::depthOfDimension(d);
-        const uint64_t depth = uint64_t(vertex < 0 ? 0 : vertex);
-        const uint64_t inBlock =
-            d < dims::kFirstBounce
-                ? uint64_t(d)
-                : uint64_t(dims::kFirstBounce + (d - dims::kFirstBounce) % dims::kDimsPerBounce);
-        const uint64_t x = uint64_t(uint32_t(pixel_.x)) + offsetX_;
-        const uint64_t y = uint64_t(uint32_t(pixel_.y)) + offsetY_;
-        const uint64_t row = wrap(y + inBlock * 100937 + index_ * 1091 + depth * 133337);
-        const uint64_t col = wrap(x + inBlock * 99523 + index_ * 2399 + depth * 2549);
-        const uint64_t block = sizeMask_ ? index_ >> std::countr_zero(size) : index_ / size;
-        const uint32_t rotation = foldSeed(hashValues(seed_, d, block, 0x4350u));
-        return fixedPointToFloat(texture_->fixedPoint[row * size + col] + rotation);
+    // The lookup above, computed from scratch: what the draws must equal.
+    float definition(Vec2i pixel, uint64_t index, int d) const {
+        const blue_noise::LayoutTerms t = blue_noise::layoutTerms(d);
+        return lookup(pixel, index, t, rotation(d, block(index)));
     }
+
+  private:
+    // Which block of `size` samples index lies in: each gets its own rotation.
+    uint64_t block(uint64_t index) const {
+        return sizeMask_ ? index >> std::countr_zero(uint64_t(texture_->size))
+                         : index / uint64_t(texture_->size);
+    }
+    uint32_t rotation(int d, uint64_t block) const {
+        return foldSeed(hashValues(seed_, d, block, 0x4350u));
+    }
+    float lookup(Vec2i pixel, uint64_t index, blue_noise::LayoutTerms t, uint32_t rotation) const {
+        const uint64_t x = uint64_t(uint32_t(pixel.x)) + offsetX_;
+        const uint64_t y = uint64_t(uint32_t(pixel.y)) + offsetY_;
+        const uint64_t row = wrap(y + t.row + index * 1091);
+        const uint64_t col = wrap(x + t.col + index * 2399);
+        return fixedPointToFloat(texture_->fixedPoint[row * uint64_t(texture_->size) + col] +
+                                 rotation);
+    }
+    // A path of depth 8 draws 58 dimensions: their layout terms are a table,
+    // and their rotations (four chained hashes) are kept while the sample
+    // index stays in one block — for all of a pixel's first `size` samples.
+    static constexpr int kCachedDimensions = blue_noise::kCachedDimensions;
+    float sampleDimension(int d) {
+        if (d >= kCachedDimensions) return definition(pixel_, index_, d);
+        const uint64_t b = block(index_);
+        if (rotationBlock_[d] != b) rotationBlock_[d] = b, rotation_[d] = rotation(d, b);
+        return lookup(pixel_, index_, blue_noise::kLayoutTerms[size_t(d)], rotation_[d]);
+    }
+    uint32_t rotation_[kCachedDimensions] = {};
+    uint64_t rotationBlock_[kCachedDimensions];  // ~0: not yet computed
 
     int spp_;
     uint64_t seed_;

@@ -73,6 +73,12 @@ ZSobolSampler::ZSobolSampler(const SamplerConfig& c)
         return t;
     }();
     reversedSobol1Bytes_ = bytes.data();
+    if (log2Spp_ >= 1 && log2Spp_ <= kMaxTreeLog2Spp) {
+        const int levels = log2Spp_ / 2;  // full base-4 digits below the pixel's
+        for (int j = 0; j < levels; ++j) lowNodes_ += 1 << (2 * j);
+        if (log2Spp_ & 1) lowNodes_ += 1 << (log2Spp_ - 1);
+        lowPermutations_.assign(size_t(kCachedDimensions) * size_t(lowNodes_), kUnset);
+    }
     for (int d = 0; d < kCachedDimensions; ++d) {
         CachedDimension& cd = cache_[d];
         cd.salt = hashValues(d, seed_, 0x5a4fu);

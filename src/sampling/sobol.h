@@ -33,8 +33,10 @@
 // dimensions 0 and 1 with Owen scrambling seeded per dimension.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "sampling/lowdiscrepancy.h"
 #include "sampling/sampler.h"
@@ -140,8 +142,10 @@ class OwenSobolSampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        // A path repositions several times per vertex: hash a pixel once.
-        if (p.x != pixel_.x || p.y != pixel_.y) pixel_ = p, pixelHash_ = pixelHash(p, seed_);
+        // A path repositions several times per vertex: hash a pixel once, and
+        // forget the dimensions' seeds of the pixel before.
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelHash_ = pixelHash(p, seed_), seeds1DValid_ = seeds2DValid_ = 0;
         index_ = static_cast<uint32_t>(index);
         dimension_ = dim;
     }
@@ -152,19 +156,20 @@ class OwenSobolSampler {
     // transform of sobolSecondDimension), the reversals that meet cancel:
     // i = R(L_h(R(index))), x = R(L_sx(i)), y = R(L_sy(Z(i))) — four
     // reversals per pair instead of eight, the same bits.
+    // The seeds depend on the pixel and the dimension only, so they are kept
+    // for the pixel's other samples (the first kCachedDimensions dimensions).
     float get1D() {
-        const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_++) << 40 | 0x31));
-        const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
-        return fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, foldSeed(mixBits(h)))));
+        const Seeds k = seeds(dimension_++, 0x31, seeds1DValid_, seeds1D_);
+        const uint32_t i = owenScramble(index_, k.index);
+        return fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, foldSeed(k.values))));
     }
     Vec2f get2D() {
-        const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(dimension_) << 40 | 0x32));
+        const Seeds k = seeds(dimension_, 0x32, seeds2DValid_, seeds2D_);
         dimension_ += 2;
-        const uint32_t i = owenScramble(index_, static_cast<uint32_t>(h));
-        const uint64_t s = mixBits(h);
-        return {fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, uint32_t(s)))),
+        const uint32_t i = owenScramble(index_, k.index);
+        return {fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, uint32_t(k.values)))),
                 fixedPointToFloat(reverseBits32(laineKarrasPermutation(
-                    uint32_t(sobolSupersetTransform(i)), uint32_t(s >> 32))))};
+                    uint32_t(sobolSupersetTransform(i)), uint32_t(k.values >> 32))))};
     }
     // The definitions the draws above must equal (for tests): dimension `dim`
     // of sample `index` for a pixel whose hash is `pixelHash`.
@@ -186,6 +191,23 @@ class OwenSobolSampler {
     Vec2f getPixel2D() { return get2D(); }
 
   private:
+    // h = mixBits(pixel hash, dimension, tag) scrambles the index (its low 32
+    // bits) and mixBits(h) seeds the output scrambles.
+    struct Seeds {
+        uint32_t index = 0;
+        uint64_t values = 0;
+    };
+    static constexpr int kCachedDimensions = 64;
+    Seeds seeds(int d, uint64_t tag, uint64_t& valid, Seeds* cache) const {
+        const auto compute = [&] {
+            const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(d) << 40 | tag));
+            return Seeds{static_cast<uint32_t>(h), mixBits(h)};
+        };
+        if (d >= kCachedDimensions) return compute();
+        if (!((valid >> d) & 1)) cache[d] = compute(), valid |= uint64_t(1) << d;
+        return cache[d];
+    }
+
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
@@ -193,6 +215,8 @@ class OwenSobolSampler {
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;
+    uint64_t seeds1DValid_ = 0, seeds2DValid_ = 0;  // bit d: seeds…_[d] is this pixel's
+    Seeds seeds1D_[kCachedDimensions], seeds2D_[kCachedDimensions];
 };
 
 namespace zsobol {
@@ -200,11 +224,14 @@ namespace zsobol {
 inline constexpr uint8_t kDigitPermutations[24] = {0xe4, 0xb4, 0xd8, 0x78, 0x9c, 0x6c, 0xe1, 0xb1,
                                                    0xc9, 0x39, 0x8d, 0x2d, 0xd2, 0x72, 0xc6, 0x36,
                                                    0x4e, 0x1e, 0x93, 0x63, 0x87, 0x27, 0x4b, 0x1b};
-// Base-4 digit `digit` of a Morton index, permuted by the permutation that the
-// digits above it (`higherDigits`) and the dimension's salt choose.
+// The permutation that the digits above a digit (`higherDigits`) and the
+// dimension's salt choose, packed as in kDigitPermutations.
+inline uint8_t digitPermutation(uint64_t higherDigits, uint64_t salt) {
+    return kDigitPermutations[(mixBits(higherDigits ^ salt) >> 24) % 24];
+}
+// Base-4 digit `digit` of a Morton index, permuted by that permutation.
 inline unsigned permuteDigit(unsigned digit, uint64_t higherDigits, uint64_t salt) {
-    const unsigned perm = kDigitPermutations[(mixBits(higherDigits ^ salt) >> 24) % 24];
-    return (perm >> (2 * digit)) & 3;
+    return (digitPermutation(higherDigits, salt) >> (2 * digit)) & 3;
 }
 }  // namespace zsobol
 
@@ -234,7 +261,7 @@ class ZSobolSampler {
         const CachedDimension& c = cached(d);
         // Sobol' dimension 0 is the bit reversal, which owenScramble undoes:
         // owenScramble(reverse(i), s) = reverse(laineKarras(i, s)).
-        const uint32_t index = uint32_t(c.highIndex | lowDigits(c.salt));
+        const uint32_t index = uint32_t(c.highIndex | lowDigits(d, c.salt));
         return fixedPointToFloat(reverseBits32(laineKarrasPermutation(index, c.seed1D)));
     }
     Vec2f get2D() {
@@ -249,7 +276,7 @@ class ZSobolSampler {
                     owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
         }
         const CachedDimension& c = cached(d);
-        const uint64_t low = lowDigits(c.salt);
+        const uint64_t low = lowDigits(d, c.salt);
         // Sobol' dimension 1 is linear over GF(2) and the high and low index
         // bits are disjoint, so its value is the cached high part XOR the
         // low part; both are kept bit-reversed, as owenScramble wants them.
@@ -274,7 +301,7 @@ class ZSobolSampler {
     uint64_t sampleIndex(int dimension) {
         if (dimension >= kCachedDimensions) return referenceSampleIndex(dimension);
         const CachedDimension& c = cached(dimension);
-        return c.highIndex | lowDigits(c.salt);
+        return c.highIndex | lowDigits(dimension, c.salt);
     }
 
   private:
@@ -294,14 +321,42 @@ class ZSobolSampler {
         CachedDimension& c = cache_[size_t(d)];
         if (!((cacheValid_ >> d) & 1)) {
             fillHighDigits(c);
+            if (lowNodes_ > 0)
+                std::fill_n(lowPermutations_.begin() + d * lowNodes_, lowNodes_, kUnset);
             cacheValid_ |= uint64_t(1) << d;
         }
         return c;
     }
     void fillHighDigits(CachedDimension& c) const;
     // The permuted digits below the pixel's: the ⌈log2 spp / 2⌉ digits that
-    // change from sample to sample (same loop as referenceSampleIndex's).
-    uint64_t lowDigits(uint64_t salt) const {
+    // change from sample to sample (same loop as referenceSampleIndex's). A
+    // digit's permutation depends on the digits above it only, so for one
+    // pixel the low digits form a tree of 1 + 4 + 16 + … nodes (and a last
+    // level of single bits for an odd log2 spp): each node's permutation is
+    // hashed when a sample first reaches it and kept in lowPermutations_ for
+    // the pixel's other samples — at 256 spp 85 hashes per dimension and pixel
+    // instead of four per draw.
+    uint64_t lowDigits(int d, uint64_t salt) {
+        const int odd = log2Spp_ & 1;
+        if (lowNodes_ == 0) return lowDigitsUncached(salt);
+        uint8_t* node = lowPermutations_.data() + size_t(d) * size_t(lowNodes_);
+        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
+        uint64_t index = 0;
+        size_t level = 0;  // the first node of the current level
+        for (int shift = log2Spp_ - 2, j = 0; shift >= odd; shift -= 2, ++j) {
+            uint8_t& perm = node[level + (sample >> (shift + 2))];
+            if (perm == kUnset) perm = zsobol::digitPermutation(mortonIndex_ >> (shift + 2), salt);
+            index |= uint64_t((perm >> (2 * ((sample >> shift) & 3))) & 3) << shift;
+            level += size_t(1) << (2 * j);
+        }
+        if (odd) {
+            uint8_t& flip = node[level + (sample >> 1)];
+            if (flip == kUnset) flip = uint8_t(mixBits((mortonIndex_ >> 1) ^ salt) & 1);
+            index |= (sample & 1) ^ flip;
+        }
+        return index;
+    }
+    uint64_t lowDigitsUncached(uint64_t salt) const {
         const int odd = log2Spp_ & 1;
         uint64_t index = 0;
         for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2)
@@ -311,6 +366,11 @@ class ZSobolSampler {
         if (odd) index |= (mortonIndex_ & 1) ^ (mixBits((mortonIndex_ >> 1) ^ salt) & 1);
         return index;
     }
+    // Up to 4096 spp the trees are kept: 1365 nodes per dimension at most.
+    static constexpr int kMaxTreeLog2Spp = 12;
+    static constexpr uint8_t kUnset = 0xff;  // no permutation of four digits is 0xff
+    int lowNodes_ = 0;                       // nodes per dimension (0: no tree kept)
+    std::vector<uint8_t> lowPermutations_;   // kCachedDimensions × lowNodes_
 
     int spp_;
     uint64_t seed_;
