@@ -141,8 +141,8 @@ const BadInput kCases[] = {
      "closing ']', saw 's'"},
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
-     "samplers, spp, seeds, resolution, max_depth, russian_roulette, metrics, "
-     "time_budget_seconds, reference)"},
+     "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
+     "roulette_depth, metrics, time_budget_seconds, reference)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
      "SPEC-SAMPLER"},
     {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",

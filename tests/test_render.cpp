@@ -78,6 +78,38 @@ TEST(MaxDepth, CountsLikePbrt) {
     }
 }
 
+TEST(RouletteDepth, EndsPathsOnlyAfterItsBouncesAndStaysUnbiased) {
+    // Furnace with max depth 5: a path continues from vertices 0…4. Roulette
+    // from vertex D may end it only there, so the later it starts the more
+    // rays are traced; from vertex 5 on it never fires, which must be the
+    // render without roulette bit for bit. Every start depth stays unbiased.
+    const float a = 0.6f;
+    const int maxDepth = 5;
+    const RenderScene scene(furnace(a, 1.0f));
+    RenderSettings s;
+    s.samplesPerPixel = 32;
+    s.maxDepth = maxDepth;
+    s.russianRoulette = false;
+    const RenderOutput none = render(scene, s);
+    s.russianRoulette = true;
+    uint64_t previousRays = 0;
+    for (int start : {0, 2, 4}) {
+        s.rouletteDepth = start;
+        const RenderOutput out = render(scene, s);
+        EXPECT_GT(out.stats.rays, previousRays) << "roulette depth " << start;
+        EXPECT_LT(out.stats.rays, none.stats.rays) << "roulette depth " << start;
+        previousRays = out.stats.rays;
+        const ImageMean m = meanOf(out);
+        const double expected = (1 - std::pow(a, maxDepth + 1)) / (1 - a);
+        EXPECT_NEAR(m.mean, expected, 5 * m.standardError * std::sqrt(3.0) + 1e-4)
+            << "roulette depth " << start;
+    }
+    s.rouletteDepth = maxDepth;
+    EXPECT_EQ(render(scene, s).image.rgb, none.image.rgb);
+    s.rouletteDepth = -1;
+    EXPECT_THROW(render(scene, s), InputError);
+}
+
 TEST(NonFiniteGuard, NaNSamplesNeverReachTheImage) {
     SceneDescription desc = furnace(0.5f, 1.0f);
     desc.materials[0].albedo = Vec3f(std::nanf(""));

@@ -51,6 +51,21 @@ TEST_F(RenderCli, IdenticalBytesForOneTwoAndEightThreads) {
     }
 }
 
+// Roulette that may start only at the maximum depth never fires: the same
+// bytes as no roulette. An earlier start is a different image.
+TEST_F(RenderCli, RouletteDepthReachesTheRenderer) {
+    const std::string common = "render --scene cornell-box --spp 4 --size 32x24 --max-depth 4 ";
+    const auto render = [&](const std::string& args, const std::string& name) {
+        const auto r = runPathlab(common + args + " -o " + path(name), dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return testing::slurpFile(path(name));
+    };
+    const std::string none = render("--no-russian-roulette", "none.exr");
+    EXPECT_EQ(render("--roulette-depth 4", "late.exr"), none);
+    EXPECT_NE(render("--roulette-depth 0", "early.exr"), none);
+    EXPECT_NE(render("", "default.exr"), none);
+}
+
 struct BadInput {
     const char* args;
     const char* mentions;  // a word the one-line message must contain
@@ -66,6 +81,7 @@ TEST_F(RenderCli, BadInputIsOneLineAndExitCodeTwo) {
         {"--scene cornell-box --spp 1 --size 0x0", "size"},
         {"--scene cornell-box --spp 1 --size huge", "size"},
         {"--scene cornell-box --spp 1 --max-depth -3", "depth"},
+        {"--scene cornell-box --spp 1 --roulette-depth -1", "--roulette-depth"},
         {"--scene cornell-box --spp -5", "spp"},
     };
     for (const BadInput& c : cases) {

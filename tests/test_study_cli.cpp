@@ -124,6 +124,12 @@ TEST(StudyCli, ReferenceIsRenderedOnceAndReusedFromTheCache) {
     const auto third = runPathlab("study " + other.string() + " -o " + (dir / "c").string(), dir);
     ASSERT_EQ(third.exitCode, 0) << third.err;
     EXPECT_NE(third.err.find("rendering reference"), std::string::npos) << third.err;
+    // So is a different roulette depth: the reference is another image.
+    const auto late =
+        testing::writeSpec(dir, "late.toml", testing::tinySpec("roulette_depth = 0\n"));
+    const auto fourth = runPathlab("study " + late.string() + " -o " + (dir / "d").string(), dir);
+    ASSERT_EQ(fourth.exitCode, 0) << fourth.err;
+    EXPECT_NE(fourth.err.find("rendering reference"), std::string::npos) << fourth.err;
     fs::remove_all(dir);
 }
 

@@ -24,6 +24,7 @@ std::string renderArgs(const std::string& scene, const CellRow& c,
            std::to_string(c.key.spp) + " --seed " + std::to_string(c.key.seed) + " --size " +
            std::to_string(c.width) + "x" + std::to_string(c.height) + " --max-depth " +
            std::to_string(c.maxDepth) + " --threads " + std::to_string(c.threads) +
+           " --roulette-depth " + study.at("roulette_depth") +
            (study.at("russian_roulette") == "true" ? "" : " --no-russian-roulette");
 }
 
@@ -60,7 +61,7 @@ TEST(StudyRecords, EveryCellRegeneratesByteForByteFromItsRecord) {
                            // `render --seed 1` makes.
                            "samplers = [\"sobol-owen\", \"halton\", \"independent\"]\n"
                            "spp = [1, 4]\nseeds = 2\n"
-                           "resolution = [24, 20]\nmax_depth = 5\nrussian_roulette = false\n"
+                           "resolution = [24, 20]\nmax_depth = 5\nroulette_depth = 1\n"
                            "[reference]\nspp = 32\n");
     for (const char* out : {"a", "b"})
         ASSERT_EQ(
@@ -81,7 +82,8 @@ TEST(StudyRecords, EveryCellRegeneratesByteForByteFromItsRecord) {
                  ? ""
                  : "-dirty");
     EXPECT_EQ(study.at("git_commit"), expectedCommit);
-    EXPECT_EQ(study.at("russian_roulette"), "false");
+    EXPECT_EQ(study.at("russian_roulette"), "true");
+    EXPECT_EQ(study.at("roulette_depth"), "1");
 
     for (const CellRow& c : cells) {
         SCOPED_TRACE(c.image);

@@ -43,6 +43,9 @@ TEST(StudySpec, ValidSpecWithDefaults) {
     EXPECT_EQ(s.reference.sampler, "independent");
     EXPECT_EQ(s.reference.seed, kDefaultReferenceSeed);
     EXPECT_FALSE(s.timeBudgetSeconds.has_value());
+    EXPECT_TRUE(s.russianRoulette);
+    EXPECT_EQ(s.rouletteDepth, 2);
+    EXPECT_EQ(parse(kValid + "roulette_depth = 4\n").rouletteDepth, 4);
 }
 
 TEST(StudySpec, CanonicalTomlRoundTrips) {
@@ -54,6 +57,9 @@ TEST(StudySpec, CanonicalTomlRoundTrips) {
     StudySpec changed = presetSpec("quick");
     changed.reference.spp *= 2;
     EXPECT_EQ(firstSpecDifference(presetSpec("quick"), changed), "reference.spp");
+    changed = presetSpec("quick");
+    changed.rouletteDepth = 4;
+    EXPECT_EQ(firstSpecDifference(presetSpec("quick"), changed), "roulette_depth");
 }
 
 // Names may hold any character TOML can escape; the canonical TOML must read
@@ -74,6 +80,7 @@ TEST(StudySpec, ErrorsNameTheKeyAndTheLine) {
         {kValid + "samplerz = [\"halton\"]\n", "spec.toml:4: key 'samplerz' is not"},
         {kValid + "seeds = \"three\"\n", "spec.toml:4: key 'seeds' must be an integer, got string"},
         {kValid + "seeds = 0\n", "spec.toml:4: key 'seeds' must be between 1"},
+        {kValid + "roulette_depth = -1\n", "spec.toml:4: key 'roulette_depth' must be between 0"},
         {"scenes = [\"cornell-box\"]\nsamplers = [\"halton\",\n  \"nope\"]\nspp = [1]\n",
          "spec.toml:3: key 'samplers[1]' names an unknown sampler 'nope'"},
         {"scenes = [\"no-such-scene\"]\nsamplers = [\"halton\"]\nspp = [1]\n",
@@ -113,6 +120,8 @@ TEST(StudySpec, DocumentedExampleIsTheSeedPreset) {
     EXPECT_EQ(s.resolution.x, seed.resolution.x);
     EXPECT_EQ(s.resolution.y, seed.resolution.y);
     EXPECT_EQ(s.maxDepth, seed.maxDepth);
+    EXPECT_EQ(s.russianRoulette, seed.russianRoulette);
+    EXPECT_EQ(s.rouletteDepth, seed.rouletteDepth);
     EXPECT_EQ(s.reference.spp, seed.reference.spp);
     EXPECT_EQ(s.reference.sampler, seed.reference.sampler);
     EXPECT_EQ(s.timeBudgetSeconds, seed.timeBudgetSeconds);

@@ -22,7 +22,7 @@ struct RenderOptions {
     RenderSettings settings;
     std::string seed = std::to_string(settings.seed);  // parseSeed
     // Read wide, so an absurd count is refused by range, not by a conversion.
-    int64_t spp = 16, maxDepth = 8;
+    int64_t spp = 16, maxDepth = 8, rouletteDepth = kDefaultRouletteDepth;
     bool noRoulette = false;
     bool solidAngleLights = false;
 };
@@ -59,6 +59,7 @@ void runRender(RenderOptions& o) {
     s.russianRoulette = !o.noRoulette;
     s.samplesPerPixel = checkedInt(o.spp, 1, kMaxSamplesPerPixel, "--spp");
     s.maxDepth = checkedInt(o.maxDepth, 0, kMaxDepth, "--max-depth");
+    s.rouletteDepth = checkedInt(o.rouletteDepth, 0, kMaxDepth, "--roulette-depth");
     s.seed = parseSeed(o.seed);
     if (!o.size.empty()) s.resolution = parseSize(o.size);
     validateRenderSettings(s);
@@ -94,6 +95,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--max-depth", opts->maxDepth, "Maximum path depth (1 = direct lighting only)")
         ->capture_default_str();
     cmd->add_flag("--no-russian-roulette", opts->noRoulette, "Disable Russian roulette");
+    cmd->add_option("--roulette-depth", opts->rouletteDepth,
+                    "Bounces before Russian roulette may end a path (pbrt-v4: 2, Mitsuba 3: 4)")
+        ->capture_default_str();
     cmd->add_flag("--solid-angle-lights", opts->solidAngleLights,
                   "Sample rectangular lights by solid angle instead of by area");
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")

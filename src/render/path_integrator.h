@@ -15,19 +15,12 @@
 
 #include <limits>
 
+#include "render/integrator_settings.h"
 #include "render/render_scene.h"
 #include "render/sampling_routines.h"
 #include "sampling/sampler.h"
 
 namespace pathlab {
-
-struct IntegratorSettings {
-    int maxDepth = 8;
-    bool russianRoulette = true;
-    // Roulette starts when continuing from this vertex (0-based): the path then
-    // already has three segments.
-    static constexpr int kRouletteStartDepth = 2;
-};
 
 struct PathCounters {
     uint64_t rays = 0;        // closest-hit rays: camera and bounce
@@ -156,7 +149,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         origin = scene.offsetOrigin(si, wi);
         dir = wi;
 
-        if (settings.russianRoulette && depth >= IntegratorSettings::kRouletteStartDepth) {
+        if (settings.russianRoulette && depth >= settings.rouletteDepth) {
             const float q = std::max(0.0f, 1 - maxComponent(beta));
             if (q > 0 && draws.get1D(dims::kRoulette) < q) break;
             beta *= 1 / (1 - q);

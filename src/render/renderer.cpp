@@ -151,6 +151,9 @@ void validateRenderSettings(const RenderSettings& s) {
                          std::to_string(s.resolution.x) + "x" + std::to_string(s.resolution.y));
     if (s.maxDepth < 0 || s.maxDepth > 1024)
         throw InputError("max depth must be between 0 and 1024, got " + std::to_string(s.maxDepth));
+    if (s.rouletteDepth < 0 || s.rouletteDepth > 1024)
+        throw InputError("roulette depth must be between 0 and 1024, got " +
+                         std::to_string(s.rouletteDepth));
     if (s.threads < 0 || s.threads > 4096)
         throw InputError("threads must be between 0 (all cores) and 4096, got " +
                          std::to_string(s.threads));
@@ -175,7 +178,8 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     const AnySampler prototype =
         makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
     const PinholeCamera camera(scene.description().camera, res);
-    const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette};
+    const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
+                                        settings.rouletteDepth};
 
     std::vector<Tile> tiles;
     for (int y = 0; y < res.y; y += kTileSize)

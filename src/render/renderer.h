@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "render/integrator_settings.h"
 #include "render/render_scene.h"
 
 namespace pathlab {
@@ -19,7 +20,8 @@ struct RenderSettings {
     Vec2i resolution{0, 0};  // 0×0: the scene's own
     int maxDepth = 8;
     bool russianRoulette = true;
-    int threads = 0;  // 0: all cores
+    int rouletteDepth = kDefaultRouletteDepth;  // bounces before roulette may end a path
+    int threads = 0;                            // 0: all cores
     bool progress = false;
     // Also keep the image after each of these sample counts (ascending, each
     // below samplesPerPixel). Only for progressive samplers (SamplerInfo), for

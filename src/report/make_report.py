@@ -355,7 +355,8 @@ def header(study):
         ("max depth", info.get("max_depth", "?")),
         ("reference", f"{info.get('reference_spp', '?')} spp, "
                       f"{info.get('reference_sampler', '?')}, seed {info.get('reference_seed', '?')}"),
-        ("Russian roulette", "on" if info.get("russian_roulette", "true") == "true" else "off"),
+        ("Russian roulette", f"after {info.get('roulette_depth', '2')} bounces"
+                             if info.get("russian_roulette", "true") == "true" else "off"),
         ("threads", ", ".join(str(n) for n in sorted({int(c["threads"]) for c in study.cells
                                                        if c.get("threads") not in (None, "")}))
          or "?"),

@@ -102,6 +102,7 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     h.integer(uint64_t(spec.resolution.y));
     h.integer(uint64_t(spec.maxDepth));
     h.integer(spec.russianRoulette);
+    h.integer(uint64_t(spec.rouletteDepth));
     h.integer(uint64_t(spec.reference.spp));
     h.text(spec.reference.sampler);
     h.integer(spec.reference.seed);
@@ -158,6 +159,7 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
                                  {"height", spec.resolution.y},
                                  {"max_depth", spec.maxDepth},
                                  {"russian_roulette", spec.russianRoulette},
+                                 {"roulette_depth", spec.rouletteDepth},
                                  {"spp", spec.reference.spp},
                                  {"sampler", spec.reference.sampler},
                                  {"seed", spec.reference.seed},
@@ -179,6 +181,7 @@ Reference renderReference(const RenderScene& scene, const StudySpec& spec, int t
     s.resolution = spec.resolution;
     s.maxDepth = spec.maxDepth;
     s.russianRoulette = spec.russianRoulette;
+    s.rouletteDepth = spec.rouletteDepth;
     s.threads = threads;
     s.progress = true;
     RenderOutput out = render(scene, s);

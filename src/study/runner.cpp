@@ -206,6 +206,7 @@ void recordStudy(const StudySpec& spec, const std::vector<SceneJob>& jobs, Resul
         {"height", std::to_string(spec.resolution.y)},
         {"max_depth", std::to_string(spec.maxDepth)},
         {"russian_roulette", spec.russianRoulette ? "true" : "false"},
+        {"roulette_depth", std::to_string(spec.rouletteDepth)},
         {"reference_spp", std::to_string(spec.reference.spp)},
         {"reference_sampler", spec.reference.sampler},
         {"reference_seed", std::to_string(spec.reference.seed)},
@@ -415,6 +416,7 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
     s.resolution = ctx.spec.resolution;
     s.maxDepth = ctx.spec.maxDepth;
     s.russianRoulette = ctx.spec.russianRoulette;
+    s.rouletteDepth = ctx.spec.rouletteDepth;
     s.threads = ctx.options.threads;
     const RenderOutput out = render(*job.render, s);
     std::vector<PrefixImage> images = out.prefixes;

@@ -198,9 +198,10 @@ ReferenceSpec SpecReader::reference(const toml::node& n) const {
 }
 
 StudySpec readSpec(const toml::table& t, const SpecReader& in) {
-    in.onlyKeys(t, "",
-                {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
-                 "russian_roulette", "metrics", "time_budget_seconds", "reference"});
+    in.onlyKeys(
+        t, "",
+        {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
+         "russian_roulette", "roulette_depth", "metrics", "time_budget_seconds", "reference"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
         s.name = in.string(*v, "name");
@@ -215,6 +216,8 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
         s.maxDepth = int(in.integer(*v, "max_depth", 0, 1024));
     if (const toml::node* v = t.get("russian_roulette"))
         s.russianRoulette = in.boolean(*v, "russian_roulette");
+    if (const toml::node* v = t.get("roulette_depth"))
+        s.rouletteDepth = int(in.integer(*v, "roulette_depth", 0, 1024));
     if (const toml::node* v = t.get("metrics"))
         s.metrics = in.names(*v, "metrics", knownStudyMetrics(), "metric");
     if (const toml::node* v = t.get("time_budget_seconds"))
@@ -300,6 +303,7 @@ std::string studySpecToToml(const StudySpec& s) {
         << "resolution = [" << s.resolution.x << ", " << s.resolution.y << "]\n"
         << "max_depth = " << s.maxDepth << "\n"
         << "russian_roulette = " << (s.russianRoulette ? "true" : "false") << "\n"
+        << "roulette_depth = " << s.rouletteDepth << "\n"
         << "metrics = " << tomlArray(s.metrics, str) << "\n";
     if (s.timeBudgetSeconds)
         out << "time_budget_seconds = " << nlohmann::json(*s.timeBudgetSeconds).dump() << "\n";
@@ -324,6 +328,7 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.resolution.x != b.resolution.x || a.resolution.y != b.resolution.y) return "resolution";
     if (a.maxDepth != b.maxDepth) return "max_depth";
     if (a.russianRoulette != b.russianRoulette) return "russian_roulette";
+    if (a.rouletteDepth != b.rouletteDepth) return "roulette_depth";
     if (a.metrics != b.metrics) return "metrics";
     if (a.timeBudgetSeconds != b.timeBudgetSeconds) return "time_budget_seconds";
     if (a.reference.spp != b.reference.spp) return "reference.spp";

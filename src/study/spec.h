@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "render/integrator_settings.h"
 
 namespace pathlab {
 
@@ -43,6 +44,7 @@ struct StudySpec {
     Vec2i resolution{256, 256};
     int maxDepth = 8;
     bool russianRoulette = true;
+    int rouletteDepth = kDefaultRouletteDepth;  // bounces before roulette may end a path
     ReferenceSpec reference;
     std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
     std::optional<double> timeBudgetSeconds;

@@ -1,0 +1,19 @@
+// What the path integrator is asked to do: how deep paths go and when Russian
+// roulette may end them. Shared by the renderer's and the study's settings.
+#pragma once
+
+namespace pathlab {
+
+// Bounces before roulette may end a path. 2 is pbrt-v4's rule (depth > 1);
+// Mitsuba 3's rr_depth = 5 is 4 here.
+inline constexpr int kDefaultRouletteDepth = 2;
+
+struct IntegratorSettings {
+    int maxDepth = 8;
+    bool russianRoulette = true;
+    // Roulette may end a path only after its first `rouletteDepth` bounces: it
+    // first decides when continuing from vertex `rouletteDepth` (0-based).
+    int rouletteDepth = kDefaultRouletteDepth;
+};
+
+}  // namespace pathlab
