@@ -1,5 +1,6 @@
 // What the path integrator is asked to do: how deep paths go and when Russian
-// roulette may end them. Shared by the renderer's and the study's settings.
+// roulette may end them. The renderer's and the study's settings take their
+// default roulette depth from here.
 #pragma once
 
 namespace pathlab {

@@ -172,17 +172,22 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
     writeTextFileAtomic(metadataPath(r.cacheKey), meta.dump(2) + "\n");
 }
 
-Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
-                          const std::string& cacheKey) {
+RenderSettings studyRenderSettings(const StudySpec& spec, int threads) {
     RenderSettings s;
-    s.sampler = spec.reference.sampler;
-    s.samplesPerPixel = spec.reference.spp;
-    s.seed = spec.reference.seed;
     s.resolution = spec.resolution;
     s.maxDepth = spec.maxDepth;
     s.russianRoulette = spec.russianRoulette;
     s.rouletteDepth = spec.rouletteDepth;
     s.threads = threads;
+    return s;
+}
+
+Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
+                          const std::string& cacheKey) {
+    RenderSettings s = studyRenderSettings(spec, threads);
+    s.sampler = spec.reference.sampler;
+    s.samplesPerPixel = spec.reference.spp;
+    s.seed = spec.reference.seed;
     s.progress = true;
     RenderOutput out = render(scene, s);
     Reference r;

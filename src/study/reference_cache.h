@@ -9,6 +9,7 @@
 
 #include "core/image.h"
 #include "render/render_scene.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 #include "study/cell_metrics.h"
 #include "study/spec.h"
@@ -58,6 +59,11 @@ class ReferenceCache {
 
 // Renders the reference with all `threads` (0 = all cores), showing the
 // renderer's progress, and measures its noise floor and viewing exposure.
+// The settings every image of a study shares, the reference's and the cells'
+// alike (resolution, path depth, roulette, threads), so the two cannot drift
+// apart; the caller sets the sampler, spp and seed.
+RenderSettings studyRenderSettings(const StudySpec& spec, int threads);
+
 Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
                           const std::string& cacheKey);
 

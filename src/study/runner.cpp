@@ -408,16 +408,11 @@ void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
 
 void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& meter,
                  const CellRender& cells, StudyContext& ctx) {
-    RenderSettings s;
+    RenderSettings s = studyRenderSettings(ctx.spec, ctx.options.threads);
     s.sampler = cells.sampler;
     s.samplesPerPixel = cells.spp.back();
     s.prefixSpp.assign(cells.spp.begin(), cells.spp.end() - 1);
     s.seed = uint64_t(cells.seed);
-    s.resolution = ctx.spec.resolution;
-    s.maxDepth = ctx.spec.maxDepth;
-    s.russianRoulette = ctx.spec.russianRoulette;
-    s.rouletteDepth = ctx.spec.rouletteDepth;
-    s.threads = ctx.options.threads;
     const RenderOutput out = render(*job.render, s);
     std::vector<PrefixImage> images = out.prefixes;
     images.push_back(
