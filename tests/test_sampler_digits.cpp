@@ -147,6 +147,9 @@ TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
             const int base = primes[d];
             const DigitPermutation perm = perms->forDimension(d, base);
             const uint64_t owenHash = hashValues(seed, d, 0x4f57454eu);
+            // Bases up to kMaxPairBase take the two-digit path, the others one digit at a time.
+            ASSERT_EQ(perms->dimensions[size_t(d)].pairs != nullptr,
+                      base <= HaltonDigitPermutations::kMaxPairBase);
             for (uint64_t a : indices) {
                 ASSERT_EQ(bits(randomDigitScrambled(perms->dimensions[size_t(d)], a)),
                           bits(randomDigitScrambledRadicalInverse(base, a, perm,

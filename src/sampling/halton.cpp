@@ -48,6 +48,11 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         for (int k = 0; k < kMaxDigits; ++k)
             shifts[size_t(d) * kMaxDigits + k] = static_cast<uint16_t>(rng.nextUInt(base));
     }
+    size_t pairTotal = 0;  // sized first: dimensions point into the vector
+    for (int d = 0; d < kTabulatedBases && primes[d] <= kMaxPairBase; ++d)
+        pairTotal += size_t(primes[d]) * size_t(primes[d]) * size_t(floatDigitCount(primes[d]) / 2);
+    pairTables.resize(pairTotal);
+    uint16_t* nextPairs = pairTables.data();
     tails.resize(size_t(kTabulatedBases) * kMaxDigits);
     powers.resize(size_t(kTabulatedBases) * kMaxDigits);
     dimensions.reserve(kTabulatedBases);
@@ -70,8 +75,17 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         rotation[0] = uint16_t(owenRotation(owenHash, 0, 0, uint32_t(base)));
         for (int d0 = 0; d0 < base; ++d0)
             rotation[1 + d0] = uint16_t(owenRotation(owenHash, 1, uint64_t(d0), uint32_t(base)));
-        dimensions.push_back(HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits,
-                                             scale, perm, shift, tail, power, owenHash, rotation});
+        uint16_t* pairs = base <= kMaxPairBase ? nextPairs : nullptr;
+        if (pairs) {
+            const uint32_t b = uint32_t(base);
+            for (int k = 0; k + 1 < digits; k += 2)
+                for (uint32_t q = 0; q < b * b; ++q)
+                    *nextPairs++ = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
+                                            perm[rotateDigit(q / b, shift[k + 1], b)]);
+        }
+        dimensions.push_back(HaltonDimension{
+            BaseDivider{uint32_t(base)}, uint32_t(base), digits, scale, perm, shift, tail, power,
+            pairs, BaseDivider{uint32_t(base * base)}, owenHash, rotation});
     }
 }
 

@@ -78,7 +78,12 @@ struct HaltonDimension {
     // digits above it as reversed · power[k] + tail[k] (power[k] = base^(digits−k)).
     const uint64_t* tail;
     const uint64_t* power;
-    uint64_t owenHash;  // Owen: hashValues(seed, d, 0x4f57454e)
+    // RandomDigit, bases up to kMaxPairBase: digits k and k+1 (k even) are
+    // scrambled together, pairs[(k/2)·b² + d_k + b·d_{k+1}] being the two
+    // scrambled digits as d'_k·b + d'_{k+1}; null for larger bases.
+    const uint16_t* pairs;
+    BaseDivider pairDivider;  // b²
+    uint64_t owenHash;        // Owen: hashValues(seed, d, 0x4f57454e)
     // Owen: the rotations of the root ([0]) and of its children ([1 + d_0]).
     const uint16_t* rotations;
 };
@@ -87,12 +92,16 @@ struct HaltonDimension {
 struct HaltonDigitPermutations {
     static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
     static constexpr int kTabulatedBases = 128;
+    // Pair tables stop here: b² entries per pair of digit positions (61: 3721
+    // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together.
+    static constexpr int kMaxPairBase = 61;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
-    std::vector<uint16_t> shifts;             // kMaxDigits per base: the per-position digit shifts
-    std::vector<uint64_t> tails, powers;      // kMaxDigits per tabulated base
-    std::vector<uint16_t> rotations;          // 1 + b per tabulated base
+    std::vector<uint16_t> shifts;         // kMaxDigits per base: the per-position digit shifts
+    std::vector<uint64_t> tails, powers;  // kMaxDigits per tabulated base
+    std::vector<uint16_t> rotations;      // 1 + b per tabulated base
+    std::vector<uint16_t> pairTables;     // HaltonDimension::pairs of every base ≤ kMaxPairBase
     std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
@@ -249,6 +258,18 @@ inline float randomDigitScrambled(const HaltonDimension& t, uint64_t a) {
                                                   t.shifts);
     uint64_t reversed = 0;
     int k = 0;
+    // Two digits per step where a pair table exists: the chain of divisions
+    // through a, which sets the loop's latency, is half as long. A pair whose
+    // upper digit is a zero past a's last digit gives the same integer as
+    // stopping before it, since tail[k+1] = π_b(s_{k+1})·power[k+2] + tail[k+2].
+    if (t.pairs) {
+        const uint64_t base2 = t.pairDivider.base;
+        for (; a != 0 && k + 1 < t.digits; k += 2) {
+            const uint64_t next = t.pairDivider.quotient32(a);
+            reversed = reversed * base2 + t.pairs[size_t(k / 2) * base2 + (a - next * base2)];
+            a = next;
+        }
+    }
     // Once a has no digits left, the rest are zeros: their scrambled value is tail[k].
     for (; a != 0 && k < t.digits; ++k) {
         const uint64_t next = t.divider.quotient32(a);

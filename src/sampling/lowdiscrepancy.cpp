@@ -25,11 +25,25 @@ const int* primeTable() {
 }
 
 const PrimeBase* primeBases() {
+    // An index below 2^32 has at most 32 digits (base 2).
+    constexpr int kPowers = 33;
+    static const std::vector<double> powers = [] {
+        std::vector<double> p(size_t(kPrimeTableSize) * kPowers);
+        for (int d = 0; d < kPrimeTableSize; ++d) {
+            const double inverse = 1.0 / primeTable()[d];
+            double power = 1.0;
+            for (int k = 0; k < kPowers; ++k, power *= inverse) p[size_t(d) * kPowers + k] = power;
+        }
+        return p;
+    }();
     static const std::vector<PrimeBase> bases = [] {
         std::vector<PrimeBase> b;
         b.reserve(kPrimeTableSize);
-        for (int d = 0; d < kPrimeTableSize; ++d)
-            b.push_back({BaseDivider(uint32_t(primeTable()[d])), 1.0 / primeTable()[d]});
+        for (int d = 0; d < kPrimeTableSize; ++d) {
+            const auto base = uint32_t(primeTable()[d]);
+            b.push_back({BaseDivider(base), 1.0 / base, BaseDivider(base * base),
+                         powers.data() + size_t(d) * kPowers});
+        }
         return b;
     }();
     return bases.data();

@@ -95,7 +95,9 @@ struct BaseDivider {
 // primeBases()[d] belongs to primeTable()[d]; built once, shared.
 struct PrimeBase {
     BaseDivider divider;
-    double inverse;  // 1.0 / base, as radicalInverse rounds it
+    double inverse;               // 1.0 / base, as radicalInverse rounds it
+    BaseDivider pairDivider;      // base²
+    const double* inversePowers;  // [k]: 1.0 times `inverse` k times over, k ≤ 32
 };
 const PrimeBase* primeBases();
 
@@ -103,18 +105,25 @@ const PrimeBase* primeBases();
 // reciprocal and the overflow limit): for a < 2^32 the mirrored integer has no
 // more digits than a and cannot overflow. The same digits, the same integer and
 // the same product of reciprocals, so the same float (tested).
+// Two digits per step while a has two left: the chain of divisions through a,
+// which sets the loop's latency, is half as long, and splitting the pair into
+// its digits is off that chain. The scale is looked up by the digit count
+// instead of multiplied up digit by digit (the same product, so the same bits).
 inline float radicalInverse(const PrimeBase& b, uint64_t a) {
     if (a >> 32) return radicalInverse(int(b.divider.base), a);
-    const uint64_t base = b.divider.base;
+    const uint64_t base = b.divider.base, base2 = b.pairDivider.base;
     uint64_t reversed = 0;
-    double invBaseM = 1.0;
-    while (a != 0) {
-        const uint64_t next = b.divider.quotient32(a);
-        reversed = reversed * base + (a - next * base);
-        invBaseM *= b.inverse;
+    int digits = 0;
+    for (; a >= base; digits += 2) {
+        const uint64_t next = b.pairDivider.quotient32(a);
+        const uint64_t pair = a - next * base2;  // d_k + b·d_{k+1}
+        const uint64_t upper = b.divider.quotient32(pair);
+        reversed = reversed * base2 + (pair - upper * base) * base + upper;
         a = next;
     }
-    return std::min(static_cast<float>(static_cast<double>(reversed) * invBaseM), kOneMinusEpsilon);
+    if (a != 0) reversed = reversed * base + a, ++digits;
+    return std::min(static_cast<float>(static_cast<double>(reversed) * b.inversePowers[digits]),
+                    kOneMinusEpsilon);
 }
 
 // The index whose first `digits` base-b digits, mirrored, give `inverse`:
