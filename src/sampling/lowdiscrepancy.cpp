@@ -41,8 +41,8 @@ const PrimeBase* primeBases() {
         b.reserve(kPrimeTableSize);
         for (int d = 0; d < kPrimeTableSize; ++d) {
             const auto base = uint32_t(primeTable()[d]);
-            b.push_back({BaseDivider(base), 1.0 / base, BaseDivider(base * base),
-                         powers.data() + size_t(d) * kPowers});
+            b.push_back(
+                {BaseDivider(base), BaseDivider(base * base), powers.data() + size_t(d) * kPowers});
         }
         return b;
     }();

@@ -95,9 +95,10 @@ struct BaseDivider {
 // primeBases()[d] belongs to primeTable()[d]; built once, shared.
 struct PrimeBase {
     BaseDivider divider;
-    double inverse;               // 1.0 / base, as radicalInverse rounds it
-    BaseDivider pairDivider;      // base²
-    const double* inversePowers;  // [k]: 1.0 times `inverse` k times over, k ≤ 32
+    BaseDivider pairDivider;  // base²
+    // [k]: 1.0 multiplied k times by the rounded 1.0 / base, as radicalInverse's
+    // digit loop scales its integer, k ≤ 32.
+    const double* inversePowers;
 };
 const PrimeBase* primeBases();
 

@@ -57,13 +57,13 @@ class ReferenceCache {
     std::filesystem::path directory_;
 };
 
-// Renders the reference with all `threads` (0 = all cores), showing the
-// renderer's progress, and measures its noise floor and viewing exposure.
 // The settings every image of a study shares, the reference's and the cells'
 // alike (resolution, path depth, roulette, threads), so the two cannot drift
 // apart; the caller sets the sampler, spp and seed.
 RenderSettings studyRenderSettings(const StudySpec& spec, int threads);
 
+// Renders the reference with all `threads` (0 = all cores), showing the
+// renderer's progress, and measures its noise floor and viewing exposure.
 Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
                           const std::string& cacheKey);
 
