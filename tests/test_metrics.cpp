@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -47,6 +48,28 @@ TEST(PixelMetric, MseAndRmseByHand) {
     EXPECT_DOUBLE_EQ(meanSquaredError(p.reference, p.test), 0.3125 / 6);
     EXPECT_DOUBLE_EQ(rootMeanSquaredError(p.reference, p.test), std::sqrt(0.3125 / 6));
     EXPECT_DOUBLE_EQ(meanSquaredError(p.test, p.reference), 0.3125 / 6);
+}
+
+// 3×1 image, channel errors: pixel 0 (1,0,0), pixel 1 (0,2,0), pixel 2 (0,0,3).
+// Region {1}: MSE 4/3; region {0, 2}: (1 + 9)/6 = 5/3; whole image 14/9.
+TEST(PixelMetric, MseByRegionByHand) {
+    Image reference(3, 1), test(3, 1);
+    test.set(0, 0, {1, 0, 0});
+    test.set(1, 0, {0, 2, 0});
+    test.set(2, 0, {0, 0, 3});
+    const RegionMse r = meanSquaredErrorByRegion(reference, test, {0, 1, 0});
+    ASSERT_TRUE(r.inside && r.outside);
+    EXPECT_DOUBLE_EQ(*r.inside, 4.0 / 3.0);
+    EXPECT_DOUBLE_EQ(*r.outside, 5.0 / 3.0);
+    EXPECT_EQ(r.insidePixels, 1u);
+    EXPECT_EQ(r.outsidePixels, 2u);
+    // Weighted by their pixel counts the regions give the whole image's MSE.
+    EXPECT_DOUBLE_EQ((*r.inside * 1 + *r.outside * 2) / 3, meanSquaredError(reference, test));
+    // An empty region has no MSE; a mask of another size is refused.
+    const RegionMse all = meanSquaredErrorByRegion(reference, test, {1, 1, 1});
+    EXPECT_FALSE(all.outside.has_value());
+    EXPECT_DOUBLE_EQ(*all.inside, 14.0 / 9.0);
+    EXPECT_THROW(meanSquaredErrorByRegion(reference, test, {1, 0}), std::invalid_argument);
 }
 
 TEST(PixelMetric, RelMseByHand) {

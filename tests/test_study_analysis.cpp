@@ -36,7 +36,8 @@ TEST(StudyAnalysis, SlopeIsLeastSquaresOfLogMseAboveTheNoiseFloor) {
         cell("halton", 1, 0, 0.9 + floor, 1),   cell("halton", 1, 1, 1.1 + floor, 1),
         cell("halton", 2, 0, 0.2 + floor, 2),   cell("halton", 2, 1, 0.3 + floor, 2),
         cell("halton", 4, 0, 0.125 + floor, 4), cell("halton", 4, 1, 0.125 + floor, 4)};
-    const ReferenceRow ref{"scene", "independent", 1024, 1, "key", floor, 0.0, 0, "r.exr"};
+    const ReferenceRow ref{"scene", "independent", 1024, 1,  "key", floor, 0.0,
+                           0,       "r.exr",       {},   {}, {}};
     const auto a = analyzeStudy(cells, {ref}, std::nullopt);
     const auto& s = a["scenes"]["scene"];
     EXPECT_DOUBLE_EQ(s["noise_floor_mse"].get<double>(), floor);
@@ -75,6 +76,56 @@ TEST(StudyAnalysis, RatiosTargetAndEqualTime) {
     EXPECT_NEAR(s["samplers"]["standard"]["error_at_time_budget"]["mse"].get<double>(), 0.4 / 3,
                 1e-12);
     EXPECT_NEAR(s["samplers"]["standard"]["slope_mse"].get<double>(), -1.0, 1e-12);
+}
+
+// A 10×10 image whose emitter edge is 4 pixels. Floors: edge 0.5, rest 0.01.
+// independent: edge MSE 4.5, rest 0.11 → corrected 4 and 0.1; halton: edge
+// 1.5, rest 0.06 → corrected 1 and 0.05. Ratios: edge 1/4, rest 1/2. Edge
+// share of independent's corrected error: 4·4 / (4·4 + 96·0.1) = 16/25.6.
+TEST(StudyAnalysis, RatiosByRegionSubtractEachRegionsFloor) {
+    auto regionCell = [](const std::string& sampler, double edge, double rest) {
+        CellRow c = cell(sampler, 4, 0, (4 * edge + 96 * rest) / 100, 1);
+        c.mseEdge = edge;
+        c.mseRest = rest;
+        c.width = c.height = 10;
+        return c;
+    };
+    const std::vector<CellRow> cells = {regionCell("independent", 4.5, 0.11),
+                                        regionCell("halton", 1.5, 0.06)};
+    const ReferenceRow ref{"scene", "independent", 1024, 1,    "key", 0.0, 0.0,
+                           0,       "r.exr",       0.5,  0.01, 4};
+    const auto a = analyzeStudy(cells, {ref}, std::nullopt);
+    const auto& s = a["scenes"]["scene"];
+    const auto& byRegion = s["samplers"]["halton"]["mse_ratio_by_region"];
+    EXPECT_NEAR(byRegion["edge"]["4"].get<double>(), 0.25, 1e-12);
+    EXPECT_NEAR(byRegion["rest"]["4"].get<double>(), 0.5, 1e-12);
+    EXPECT_EQ(s["regions"]["edge_pixels"].get<int64_t>(), 4);
+    EXPECT_EQ(s["regions"]["pixels"].get<int64_t>(), 100);
+    EXPECT_NEAR(s["regions"]["independent_edge_share"]["4"].get<double>(), 16 / 25.6, 1e-12);
+    // A study made before the regions: no split, no ratios by region.
+    std::vector<CellRow> old = cells;
+    for (CellRow& c : old) c.mseEdge.reset(), c.mseRest.reset();
+    const ReferenceRow oldRef{"scene", "independent", 1024, 1,  "key", 0.0, 0.0,
+                              0,       "r.exr",       {},   {}, {}};
+    const auto b = analyzeStudy(old, {oldRef}, std::nullopt);
+    EXPECT_TRUE(b["scenes"]["scene"]["regions"].is_null());
+    EXPECT_TRUE(
+        b["scenes"]["scene"]["samplers"]["halton"]["mse_ratio_by_region"]["edge"].is_null());
+}
+
+// The reference's noise floor over each region: the mean of its variance of
+// the mean over the region's pixels and channels.
+TEST(ReferenceNoise, FloorOfEachRegionIsTheMeanVarianceThere) {
+    Image reference(2, 1), variance(2, 1);
+    variance.set(0, 0, {3, 3, 6});  // mean 4
+    variance.set(1, 0, {1, 1, 1});  // mean 1
+    const std::vector<uint8_t> mask = {1, 0};
+    const NoiseFloor n = referenceNoise(reference, variance, &mask);
+    EXPECT_DOUBLE_EQ(n.mse, 2.5);
+    ASSERT_TRUE(n.mseEdge && n.mseRest);
+    EXPECT_DOUBLE_EQ(*n.mseEdge, 4.0);
+    EXPECT_DOUBLE_EQ(*n.mseRest, 1.0);
+    EXPECT_FALSE(referenceNoise(reference, variance).mseEdge.has_value());
 }
 
 TEST(StudyAnalysis, TimeAndErrorInterpolationEdges) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "core/error.h"
@@ -46,6 +47,34 @@ double meanOverChannels(const Image& reference, const Image& test, const PerChan
 
 double meanSquaredError(const Image& reference, const Image& test) {
     return meanOverChannels(reference, test, [](double r, double t) { return (t - r) * (t - r); });
+}
+
+RegionMse meanSquaredErrorByRegion(const Image& reference, const Image& test,
+                                   const std::vector<uint8_t>& mask) {
+    requireSameSize(reference, test);
+    if (mask.size() != reference.pixelCount())
+        throw std::invalid_argument("region mask does not match the image size");
+    // Row sums in parallel, added in row order: independent of thread count.
+    const size_t w = size_t(reference.width);
+    std::vector<double> inside(reference.height, 0.0), outside(reference.height, 0.0);
+    tbb::parallel_for(0, reference.height, [&](int y) {
+        for (size_t x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            double sum = 0;
+            for (size_t c = 0; c < 3; ++c) {
+                const double d = double(test.rgb[3 * i + c]) - reference.rgb[3 * i + c];
+                sum += d * d;
+            }
+            (mask[i] ? inside : outside)[size_t(y)] += sum;
+        }
+    });
+    RegionMse r;
+    for (uint8_t m : mask) ++(m ? r.insidePixels : r.outsidePixels);
+    double in = 0, out = 0;
+    for (int y = 0; y < reference.height; ++y) in += inside[size_t(y)], out += outside[size_t(y)];
+    if (r.insidePixels) r.inside = in / (3.0 * double(r.insidePixels));
+    if (r.outsidePixels) r.outside = out / (3.0 * double(r.outsidePixels));
+    return r;
 }
 
 double rootMeanSquaredError(const Image& reference, const Image& test) {

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "metrics/flip.h"
@@ -24,6 +27,17 @@ double relativeMeanSquaredError(const Image& reference, const Image& test,
 // 10·log10(peak² / MSE) in dB; +infinity for identical images.
 double peakSignalToNoiseRatio(const Image& reference, const Image& test, double peak = 1.0);
 double psnrFromMse(double mse, double peak = 1.0);
+
+// The MSE of the pixels a mask selects and of the others (each over its own
+// pixels and the three channels); nullopt for a region without pixels. The
+// mask is row-major, one entry per pixel, nonzero = inside. The two values
+// weighted by their pixel counts average to meanSquaredError.
+struct RegionMse {
+    std::optional<double> inside, outside;
+    size_t insidePixels = 0, outsidePixels = 0;
+};
+RegionMse meanSquaredErrorByRegion(const Image& reference, const Image& test,
+                                   const std::vector<uint8_t>& mask);
 
 // Number of pixels with at least one NaN or infinite channel.
 size_t countNonFinitePixels(const Image& image);

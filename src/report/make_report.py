@@ -230,6 +230,50 @@ def results_table(study, scene):
             f'<tbody>{"".join(rows)}</tbody></table><p class="note">{note}</p>')
 
 
+def region_spps(study, scene, ratios):
+    """The spp of the summary table that the region ratios have."""
+    spps = study.spps(scene)
+    wanted = [n for n in TABLE_SPPS if n in spps]
+    if spps and spps[-1] not in wanted:
+        wanted.append(spps[-1])
+    return [n for n in wanted if str(n) in ratios]
+
+
+def regions_section(study, scene):
+    """Ratios to independent over the pixels a visible emitter's outline crosses and
+    over the rest (analysis.json "regions"), or nothing when the study lacks them."""
+    runner = study.runner_analysis.get("scenes", {}).get(scene, {})
+    regions = runner.get("regions")
+    samplers = study.samplers(scene)
+    if not regions or not regions.get("edge_pixels") or "independent" not in samplers:
+        return ""
+    by_region = {s: (runner.get("samplers", {}).get(s, {}).get("mse_ratio_by_region") or {})
+                 for s in samplers}
+    spps = region_spps(study, scene, (by_region["independent"].get("edge") or {}))
+    if not spps:
+        return ""
+    head = "".join(f"<th>edge @{n}</th><th>rest @{n}</th>" for n in spps)
+    rows = []
+    for s in samplers:
+        edge, rest = by_region[s].get("edge") or {}, by_region[s].get("rest") or {}
+        cells = "".join(f"<td>{esc(fmt(edge.get(str(n))))}</td><td>{esc(fmt(rest.get(str(n))))}"
+                        f"</td>" for n in spps)
+        rows.append(f'<tr><th><span class="swatch" style="background:{figures.colour(s)}">'
+                    f'</span>{esc(s)}</th>{cells}</tr>')
+    edge_px, px = regions["edge_pixels"], regions["pixels"]
+    share = (regions.get("independent_edge_share") or {}).get(str(spps[-1]))
+    held = (f"; they hold {100 * share:.0f}% of <b>independent</b>'s error at {spps[-1]} spp"
+            if share is not None else "")
+    note = (f"The outline of a directly visible emitter crosses {edge_px} of {px} pixels "
+            f"({100 * edge_px / px:.2g}%){held}. In those pixels the integrand is a step "
+            "between the emitter and its surroundings, and a sampler acts on it only through "
+            "the pixel dimensions; everywhere else the error is that of the light transport. "
+            "MSE ratios to independent over each region, each less its own noise floor.")
+    return (f'<h3>Where the error is</h3><table class="results regions"><thead><tr><th>sampler'
+            f'</th>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>'
+            f'<p class="note">{note}</p>')
+
+
 def findings(study, scene):
     """One sentence per question a reader asks first."""
     a = study.analysis[scene]["samplers"]
@@ -304,6 +348,7 @@ def scene_section(study, scene, data, figure_names):
   <a href="figures/{esc(combined)}.png">PNG</a>.</p>
   <h3>Summary</h3>
   {results_table(study, scene)}
+  {regions_section(study, scene)}
 </section>"""
 
 

@@ -15,6 +15,8 @@ struct SppSummary {
     double mse = 0, mseMin = 0, mseMax = 0, relmse = 0, seconds = 0;
     std::optional<double> flip;
     bool hasRelmse = false;
+    // Means of the two regions' MSE, when every seed measured them.
+    std::optional<double> mseEdge, mseRest;
 };
 
 struct SamplerCells {
@@ -26,7 +28,22 @@ struct SceneCells {
     std::string name;
     double noiseMse = 0, noiseRelmse = 0;
     std::vector<SamplerCells> samplers;  // in the order they first appear
+    // The emitter-edge region (render/emitter_edges.h): its size and the
+    // noise floors of it and of the rest, when the reference recorded them.
+    std::optional<int64_t> edgePixels;
+    std::optional<double> noiseMseEdge, noiseMseRest;
 };
+
+// The mean over cells of a region's MSE; nullopt unless every cell has it.
+std::optional<double> meanOf(const std::vector<const CellRow*>& cells,
+                             std::optional<double> CellRow::*field) {
+    double sum = 0;
+    for (const CellRow* c : cells) {
+        if (!(c->*field)) return std::nullopt;
+        sum += *(c->*field);
+    }
+    return sum / double(cells.size());
+}
 
 SppSummary summarize(int spp, const std::vector<const CellRow*>& cells) {
     SppSummary s;
@@ -48,6 +65,8 @@ SppSummary summarize(int spp, const std::vector<const CellRow*>& cells) {
     s.hasRelmse = relmses > 0;
     if (relmses) s.relmse /= relmses;
     if (flips) s.flip = flipSum / flips;
+    s.mseEdge = meanOf(cells, &CellRow::mseEdge);
+    s.mseRest = meanOf(cells, &CellRow::mseRest);
     return s;
 }
 
@@ -55,11 +74,13 @@ std::vector<SceneCells> groupCells(const std::vector<CellRow>& cells,
                                    const std::vector<ReferenceRow>& references) {
     std::vector<SceneCells> scenes;
     for (const ReferenceRow& r : references)
-        scenes.push_back({r.scene, r.noiseMse, r.noiseRelmse, {}});
+        scenes.push_back(
+            {r.scene, r.noiseMse, r.noiseRelmse, {}, r.edgePixels, r.noiseMseEdge, r.noiseMseRest});
     for (const CellRow& c : cells) {
         auto scene = std::find_if(scenes.begin(), scenes.end(),
                                   [&](const SceneCells& s) { return s.name == c.key.scene; });
-        if (scene == scenes.end()) scene = scenes.insert(scenes.end(), {c.key.scene, 0, 0, {}});
+        if (scene == scenes.end())
+            scene = scenes.insert(scenes.end(), {c.key.scene, 0, 0, {}, {}, {}, {}});
         auto& samplers = scene->samplers;
         auto sampler = std::find_if(samplers.begin(), samplers.end(),
                                     [&](const SamplerCells& s) { return s.name == c.key.sampler; });
@@ -126,6 +147,49 @@ Json ratioJson(const std::vector<SppSummary>& curve, const std::vector<SppSummar
     return out;
 }
 
+// The same ratio over one region of the image (`field` of SppSummary), each
+// MSE less that region's own noise floor; null where either side lacks it.
+Json regionRatioJson(const std::vector<SppSummary>& curve,
+                     const std::vector<SppSummary>* independent,
+                     std::optional<double> SppSummary::*field, std::optional<double> floor) {
+    if (!independent || !floor) return nullptr;
+    Json out = Json::object();
+    for (const SppSummary& s : curve) {
+        auto base = std::find_if(independent->begin(), independent->end(),
+                                 [&](const SppSummary& b) { return b.spp == s.spp; });
+        if (base == independent->end()) continue;
+        const std::optional<double> mine = s.*field, theirs = (*base).*field;
+        const double denominator = theirs ? corrected(*theirs, *floor) : 0.0;
+        out[std::to_string(s.spp)] =
+            mine && denominator > 0 ? Json(corrected(*mine, *floor) / denominator) : Json(nullptr);
+    }
+    return out;
+}
+
+// The emitter-edge region of a scene, and the share of independent sampling's
+// MSE (less the floors) that lies on it at each spp: how much of the error a
+// sampler can only remove through the pixel dimensions.
+Json regionsJson(const SceneCells& scene, const std::vector<SppSummary>* independent,
+                 int64_t pixels) {
+    if (!scene.edgePixels || !scene.noiseMseEdge || !scene.noiseMseRest) return nullptr;
+    Json share = Json::object();
+    if (independent) {
+        const double edgeCount = double(*scene.edgePixels), restCount = double(pixels) - edgeCount;
+        for (const SppSummary& s : *independent) {
+            if (!s.mseEdge || !s.mseRest) continue;
+            const double edge = corrected(*s.mseEdge, *scene.noiseMseEdge) * edgeCount;
+            const double rest = corrected(*s.mseRest, *scene.noiseMseRest) * restCount;
+            share[std::to_string(s.spp)] =
+                edge + rest > 0 ? Json(edge / (edge + rest)) : Json(nullptr);
+        }
+    }
+    return {{"edge_pixels", *scene.edgePixels},
+            {"pixels", pixels},
+            {"noise_floor_mse_edge", *scene.noiseMseEdge},
+            {"noise_floor_mse_rest", *scene.noiseMseRest},
+            {"independent_edge_share", independent ? share : Json(nullptr)}};
+}
+
 std::vector<ErrorPoint> errorCurve(const std::vector<SppSummary>& curve) {
     std::vector<ErrorPoint> out;
     for (const SppSummary& s : curve) out.push_back({s.seconds, s.mse});
@@ -140,6 +204,14 @@ Json equalTimeJson(const std::vector<SppSummary>& curve, std::optional<double> b
     return {{"seconds", *budget}, {"mse", *mse}, {"mse_corrected", corrected(*mse, floor)}};
 }
 
+// The image's pixel count, from any of its cells (all share the resolution).
+int64_t scenePixels(const SceneCells& scene) {
+    for (const SamplerCells& s : scene.samplers)
+        for (const auto& [spp, cells] : s.bySpp)
+            if (!cells.empty()) return int64_t(cells.front()->width) * cells.front()->height;
+    return 0;
+}
+
 Json sceneJson(const SceneCells& scene, std::optional<double> budget) {
     std::map<std::string, std::vector<SppSummary>> curves;
     for (const SamplerCells& s : scene.samplers)
@@ -149,15 +221,18 @@ Json sceneJson(const SceneCells& scene, std::optional<double> budget) {
     const bool hasTarget = target != curves.end();
     const double targetMse = hasTarget ? target->second.back().mse : 0.0;  // 0: never reached
 
+    const std::vector<SppSummary>* base =
+        independent != curves.end() ? &independent->second : nullptr;
     Json samplers = Json::object();
     for (const SamplerCells& s : scene.samplers) {
         const std::vector<SppSummary>& curve = curves[s.name];
         samplers[s.name] = {
             {"slope_mse", orNull(convergenceSlope(curve, scene.noiseMse, false))},
             {"slope_relmse", orNull(convergenceSlope(curve, scene.noiseRelmse, true))},
-            {"mse_ratio_to_independent",
-             ratioJson(curve, independent != curves.end() ? &independent->second : nullptr,
-                       scene.noiseMse)},
+            {"mse_ratio_to_independent", ratioJson(curve, base, scene.noiseMse)},
+            {"mse_ratio_by_region",
+             {{"edge", regionRatioJson(curve, base, &SppSummary::mseEdge, scene.noiseMseEdge)},
+              {"rest", regionRatioJson(curve, base, &SppSummary::mseRest, scene.noiseMseRest)}}},
             {"time_to_target_seconds", orNull(timeToReach(errorCurve(curve), targetMse))},
             {"error_at_time_budget", equalTimeJson(curve, budget, scene.noiseMse)},
             {"by_spp", bySppJson(curve, scene)}};
@@ -166,6 +241,7 @@ Json sceneJson(const SceneCells& scene, std::optional<double> budget) {
             {"noise_floor_relmse", scene.noiseRelmse},
             {"target_mse", hasTarget ? Json(targetMse) : Json(nullptr)},
             {"target_spp", hasTarget ? Json(target->second.back().spp) : Json(nullptr)},
+            {"regions", regionsJson(scene, base, scenePixels(scene))},
             {"samplers", samplers}};
 }
 

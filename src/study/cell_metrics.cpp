@@ -26,20 +26,27 @@ flip::Options studyFlipOptions() {
 
 }  // namespace
 
-CellMeter::CellMeter(const Image& reference, float exposure, const StudySpec& spec)
-    : reference_(reference), exposure_(exposure), spec_(spec) {
+CellMeter::CellMeter(const Image& reference, float exposure, const StudySpec& spec,
+                     const std::vector<uint8_t>* edgeMask)
+    : reference_(reference), edgeMask_(edgeMask), exposure_(exposure), spec_(spec) {
     if (spec.wants("flip")) flip_.emplace(reference, studyFlipOptions());
 }
 
 CellMetrics CellMeter::measure(const Image& test) const {
-    return measureCell(reference_, test, exposure_, spec_, flip_ ? &*flip_ : nullptr);
+    return measureCell(reference_, test, exposure_, spec_, flip_ ? &*flip_ : nullptr, edgeMask_);
 }
 
 CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
-                        const StudySpec& spec, const flip::PreparedReference* prepared) {
+                        const StudySpec& spec, const flip::PreparedReference* prepared,
+                        const std::vector<uint8_t>* edgeMask) {
     CellMetrics m;
     m.mse = meanSquaredError(reference, test);
     m.rmse = std::sqrt(m.mse);
+    if (edgeMask) {
+        const RegionMse regions = meanSquaredErrorByRegion(reference, test, *edgeMask);
+        m.mseEdge = regions.inside;
+        m.mseRest = regions.outside;
+    }
     if (spec.wants("relmse")) m.relmse = relativeMeanSquaredError(reference, test);
     if (spec.wants("psnr")) {
         const double psnr =
@@ -56,17 +63,30 @@ CellMetrics measureCell(const Image& reference, const Image& test, float exposur
     return m;
 }
 
-NoiseFloor referenceNoise(const Image& reference, const Image& varianceOfMean) {
+NoiseFloor referenceNoise(const Image& reference, const Image& varianceOfMean,
+                          const std::vector<uint8_t>* edgeMask) {
     NoiseFloor n;
     const size_t count = varianceOfMean.rgb.size();
     if (count == 0) return n;
+    double edge = 0, rest = 0;
+    size_t edgeValues = 0;
     for (size_t i = 0; i < count; ++i) {
         const double var = varianceOfMean.rgb[i], r = reference.rgb[i];
         n.mse += var;
         n.relmse += var / (r * r + kRelMseEpsilon);
+        if (edgeMask && (*edgeMask)[i / 3]) {
+            edge += var;
+            ++edgeValues;
+        } else {
+            rest += var;
+        }
     }
     n.mse /= double(count);
     n.relmse /= double(count);
+    if (edgeMask) {
+        if (edgeValues) n.mseEdge = edge / double(edgeValues);
+        if (edgeValues < count) n.mseRest = rest / double(count - edgeValues);
+    }
     return n;
 }
 

@@ -2,6 +2,7 @@
 // per-pixel pictures of it that the report shows.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,9 @@ namespace pathlab {
 struct CellMetrics {
     double mse = 0, rmse = 0;
     std::optional<double> relmse, flip, flipMedian, psnr;
+    // MSE over the emitter-edge pixels and over the rest (render/emitter_edges.h);
+    // absent without a mask, or for a region with no pixels.
+    std::optional<double> mseEdge, mseRest;
     std::vector<float> flipMap;  // HDR-FLIP per pixel; empty unless FLIP was measured
 };
 
@@ -22,19 +26,23 @@ struct CellMetrics {
 // renders are linear and unbounded); PSNR is that of the tone-mapped 8-bit
 // views (both images scaled by 2^exposure, clamped, sRGB encoded, peak 1).
 // `flip` is the reference prepared once for HDR-FLIP (CellMeter below); the
-// values are those of flip::evaluate(reference, test).
+// values are those of flip::evaluate(reference, test). With `edgeMask` (one
+// entry per pixel, nonzero = emitter edge) the MSE is also split by region.
 CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
-                        const StudySpec& spec, const flip::PreparedReference* flip = nullptr);
+                        const StudySpec& spec, const flip::PreparedReference* flip = nullptr,
+                        const std::vector<uint8_t>* edgeMask = nullptr);
 
 // Measures cells against one reference: the reference's half of FLIP is
 // computed once, not once per cell.
 class CellMeter {
   public:
-    CellMeter(const Image& reference, float exposure, const StudySpec& spec);
+    CellMeter(const Image& reference, float exposure, const StudySpec& spec,
+              const std::vector<uint8_t>* edgeMask = nullptr);
     CellMetrics measure(const Image& test) const;
 
   private:
     const Image& reference_;
+    const std::vector<uint8_t>* edgeMask_;
     float exposure_;
     const StudySpec& spec_;
     std::optional<flip::PreparedReference> flip_;
@@ -43,10 +51,13 @@ class CellMeter {
 // The reference's own noise, from the renderer's per-pixel variance of the
 // mean: E[MSE(test, reference)] = true MSE + noiseMse for a test independent of
 // the reference, so no MSE below noiseMse says anything about the test.
+// With `edgeMask`, the floor of each region's MSE as well.
 struct NoiseFloor {
     double mse = 0, relmse = 0;
+    std::optional<double> mseEdge, mseRest;
 };
-NoiseFloor referenceNoise(const Image& reference, const Image& varianceOfMean);
+NoiseFloor referenceNoise(const Image& reference, const Image& varianceOfMean,
+                          const std::vector<uint8_t>* edgeMask = nullptr);
 
 // Stops of exposure that put the reference's 95th-percentile luminance at 0.9,
 // so the PNGs of one scene share one brightness and few pixels clip. Not the

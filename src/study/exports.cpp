@@ -25,6 +25,8 @@ Json cellJson(const CellRow& c) {
             {"flip", orNull(c.flip)},
             {"flip_median", orNull(c.flipMedian)},
             {"psnr", orNull(c.psnr)},
+            {"mse_edge", orNull(c.mseEdge)},
+            {"mse_rest", orNull(c.mseRest)},
             {"nonfinite", c.nonFinite},
             {"image", c.image},
             {"width", c.width},
@@ -43,6 +45,9 @@ Json referenceJson(const ReferenceRow& r) {
             {"cache_key", r.cacheKey},
             {"noise_mse", r.noiseMse},
             {"noise_relmse", r.noiseRelmse},
+            {"noise_mse_edge", orNull(r.noiseMseEdge)},
+            {"noise_mse_rest", orNull(r.noiseMseRest)},
+            {"edge_pixels", r.edgePixels ? Json(*r.edgePixels) : Json(nullptr)},
             {"exposure", r.exposure},
             {"image", r.image}};
 }

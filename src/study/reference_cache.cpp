@@ -1,5 +1,6 @@
 #include "study/reference_cache.h"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <type_traits>
@@ -85,6 +86,15 @@ void hashScene(ContentHash& h, const SceneDescription& scene, const StudyScene& 
     if (source.source != source.name) h.file(source.source);  // a file scene
 }
 
+std::optional<double> optionalNumber(const nlohmann::json& value) {
+    if (value.is_null()) return std::nullopt;
+    return value.get<double>();
+}
+
+nlohmann::json jsonOrNull(const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
 }  // namespace
 
 std::string sceneContentHash(const SceneDescription& scene, const StudyScene& source) {
@@ -137,6 +147,11 @@ std::optional<Reference> ReferenceCache::load(const std::string& key) const {
         r.seconds = meta.at("seconds").get<double>();
         r.noise.mse = meta.at("noise_mse").get<double>();
         r.noise.relmse = meta.at("noise_relmse").get<double>();
+        // Entries written before the floors by region lack these keys: they
+        // are rendered again (null: the region has no pixels).
+        r.noise.mseEdge = optionalNumber(meta.at("noise_mse_edge"));
+        r.noise.mseRest = optionalNumber(meta.at("noise_mse_rest"));
+        r.edgePixels = meta.at("edge_pixels").get<int64_t>();
         r.exposure = meta.at("exposure").get<float>();
         r.cacheKey = key;
         if (meta.at("cache_key").get<std::string>() != key) return std::nullopt;
@@ -166,6 +181,9 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
                                  {"seconds", r.seconds},
                                  {"noise_mse", r.noise.mse},
                                  {"noise_relmse", r.noise.relmse},
+                                 {"noise_mse_edge", jsonOrNull(r.noise.mseEdge)},
+                                 {"noise_mse_rest", jsonOrNull(r.noise.mseRest)},
+                                 {"edge_pixels", r.edgePixels},
                                  {"exposure", r.exposure},
                                  {"created_at", isoTimestampUtc()},
                                  {"git_commit", sourceGitCommit()}};
@@ -183,7 +201,7 @@ RenderSettings studyRenderSettings(const StudySpec& spec, int threads) {
 }
 
 Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
-                          const std::string& cacheKey) {
+                          const std::string& cacheKey, const std::vector<uint8_t>& edgeMask) {
     RenderSettings s = studyRenderSettings(spec, threads);
     s.sampler = spec.reference.sampler;
     s.samplesPerPixel = spec.reference.spp;
@@ -191,11 +209,12 @@ Reference renderReference(const RenderScene& scene, const StudySpec& spec, int t
     s.progress = true;
     RenderOutput out = render(scene, s);
     Reference r;
-    r.noise = referenceNoise(out.image, out.varianceOfMean);
+    r.noise = referenceNoise(out.image, out.varianceOfMean, &edgeMask);
     r.exposure = viewingExposure(out.image);
     r.seconds = out.stats.seconds;
     r.image = std::move(out.image);
     r.cacheKey = cacheKey;
+    r.edgePixels = std::count(edgeMask.begin(), edgeMask.end(), uint8_t(1));
     return r;
 }
 

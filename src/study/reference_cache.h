@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/render_scene.h"
@@ -22,6 +23,7 @@ struct Reference {
     NoiseFloor noise;
     float exposure = 0;
     std::string cacheKey;
+    int64_t edgePixels = 0;  // of the mask the region floors were measured over
 };
 
 // Bumped whenever the renderer's output for the same inputs changes, so stale
@@ -63,8 +65,9 @@ class ReferenceCache {
 RenderSettings studyRenderSettings(const StudySpec& spec, int threads);
 
 // Renders the reference with all `threads` (0 = all cores), showing the
-// renderer's progress, and measures its noise floor and viewing exposure.
+// renderer's progress, and measures its noise floor (over the whole image and
+// over each region of `edgeMask`, emitterEdgePixels) and viewing exposure.
 Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
-                          const std::string& cacheKey);
+                          const std::string& cacheKey, const std::vector<uint8_t>& edgeMask);
 
 }  // namespace pathlab

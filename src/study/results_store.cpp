@@ -17,17 +17,32 @@ CREATE TABLE IF NOT EXISTS cells (
   scene TEXT NOT NULL, sampler TEXT NOT NULL, spp INTEGER NOT NULL, seed INTEGER NOT NULL,
   seconds REAL, mse REAL, rmse REAL, relmse REAL, flip REAL, flip_median REAL, psnr REAL,
   nonfinite INTEGER, image TEXT, width INTEGER, height INTEGER, max_depth INTEGER,
-  threads INTEGER, git_commit TEXT, finished_at TEXT,
+  threads INTEGER, git_commit TEXT, finished_at TEXT, mse_edge REAL, mse_rest REAL,
   PRIMARY KEY (scene, sampler, spp, seed));
 CREATE TABLE IF NOT EXISTS "references" (
   scene TEXT PRIMARY KEY, sampler TEXT, spp INTEGER, seconds REAL, cache_key TEXT,
-  noise_mse REAL, noise_relmse REAL, exposure REAL, image TEXT);
+  noise_mse REAL, noise_relmse REAL, exposure REAL, image TEXT,
+  noise_mse_edge REAL, noise_mse_rest REAL, edge_pixels INTEGER);
 CREATE TABLE IF NOT EXISTS study (key TEXT PRIMARY KEY, value TEXT);
 )sql";
 
 constexpr const char* kCellColumns =
     "scene, sampler, spp, seed, seconds, mse, rmse, relmse, flip, flip_median, psnr, "
-    "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at";
+    "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at, mse_edge, "
+    "mse_rest";
+
+// Columns added since the first schema, with their tables: a study begun by an
+// older pathlab gains them (NULL in its old rows) when it is resumed.
+struct AddedColumn {
+    const char* table;
+    const char* column;
+    const char* type;
+};
+constexpr AddedColumn kAddedColumns[] = {{"cells", "mse_edge", "REAL"},
+                                         {"cells", "mse_rest", "REAL"},
+                                         {"references", "noise_mse_edge", "REAL"},
+                                         {"references", "noise_mse_rest", "REAL"},
+                                         {"references", "edge_pixels", "INTEGER"}};
 
 // Throws for SQLite's last error on `db` (the database file `path`): a full
 // disk or a file that cannot be written is the user's to fix (InputError,
@@ -71,8 +86,9 @@ class Statement {
         if (v)
             bind(i, *v);
         else
-            sqlite3_bind_null(stmt_, i);
+            bindNull(i);
     }
+    void bindNull(int i) { sqlite3_bind_null(stmt_, i); }
     // True while there is a row to read.
     bool step() {
         const int rc = sqlite3_step(stmt_);
@@ -115,6 +131,8 @@ CellRow readCell(const Statement& s) {
     r.threads = int(s.integer(16));
     r.gitCommit = s.text(17);
     r.finishedAt = s.text(18);
+    r.mseEdge = s.optionalReal(19);
+    r.mseRest = s.optionalReal(20);
     return r;
 }
 
@@ -141,6 +159,7 @@ ResultsStore::ResultsStore(const std::string& path, bool readOnly) : path_(path)
         exec("PRAGMA journal_mode=WAL");
         exec("PRAGMA synchronous=FULL");
         exec(kSchema);
+        addMissingColumns();
     } catch (const InputError&) {
         sqlite3_close(db_);
         throw;  // a full disk, a file that cannot be written
@@ -154,6 +173,17 @@ ResultsStore::~ResultsStore() {
     sqlite3_close(db_);
 }
 
+void ResultsStore::addMissingColumns() {
+    for (const AddedColumn& c : kAddedColumns) {
+        Statement info(db_, std::string("PRAGMA table_info(\"") + c.table + "\")", path_);
+        bool present = false;
+        while (info.step()) present = present || info.text(1) == c.column;
+        if (present) continue;
+        exec((std::string("ALTER TABLE \"") + c.table + "\" ADD COLUMN " + c.column + " " + c.type)
+                 .c_str());
+    }
+}
+
 void ResultsStore::exec(const char* sql) const {
     if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK)
         throwSqliteError(db_, path_);
@@ -162,7 +192,7 @@ void ResultsStore::exec(const char* sql) const {
 void ResultsStore::putCell(const CellRow& r) {
     Statement s(db_,
                 std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
-                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 path_);
     s.bind(1, r.key.scene);
     s.bind(2, r.key.sampler);
@@ -183,6 +213,8 @@ void ResultsStore::putCell(const CellRow& r) {
     s.bind(17, int64_t(r.threads));
     s.bind(18, r.gitCommit);
     s.bind(19, r.finishedAt);
+    s.bind(20, r.mseEdge);
+    s.bind(21, r.mseRest);
     // A single statement is its own transaction: the row is there whole or not at all.
     s.step();
 }
@@ -219,7 +251,8 @@ int64_t ResultsStore::cellCount() const {
 void ResultsStore::putReference(const ReferenceRow& r) {
     Statement s(db_,
                 "INSERT OR REPLACE INTO \"references\" (scene, sampler, spp, seconds, cache_key, "
-                "noise_mse, noise_relmse, exposure, image) VALUES (?,?,?,?,?,?,?,?,?)",
+                "noise_mse, noise_relmse, exposure, image, noise_mse_edge, noise_mse_rest, "
+                "edge_pixels) VALUES (?,?,?,?,?,?,?,?,?,?,?,?)",
                 path_);
     s.bind(1, r.scene);
     s.bind(2, r.sampler);
@@ -230,18 +263,29 @@ void ResultsStore::putReference(const ReferenceRow& r) {
     s.bind(7, r.noiseRelmse);
     s.bind(8, r.exposure);
     s.bind(9, r.image);
+    s.bind(10, r.noiseMseEdge);
+    s.bind(11, r.noiseMseRest);
+    if (r.edgePixels)
+        s.bind(12, *r.edgePixels);
+    else
+        s.bindNull(12);
     s.step();
 }
 
 std::vector<ReferenceRow> ResultsStore::references() const {
     Statement s(db_,
                 "SELECT scene, sampler, spp, seconds, cache_key, noise_mse, noise_relmse, "
-                "exposure, image FROM \"references\" ORDER BY rowid",
+                "exposure, image, noise_mse_edge, noise_mse_rest, edge_pixels "
+                "FROM \"references\" ORDER BY rowid",
                 path_);
     std::vector<ReferenceRow> out;
-    while (s.step())
+    while (s.step()) {
+        std::optional<int64_t> edgePixels;
+        if (s.optionalReal(11)) edgePixels = s.integer(11);
         out.push_back({s.text(0), s.text(1), int(s.integer(2)), s.real(3), s.text(4), s.real(5),
-                       s.real(6), s.real(7), s.text(8)});
+                       s.real(6), s.real(7), s.text(8), s.optionalReal(9), s.optionalReal(10),
+                       edgePixels});
+    }
     return out;
 }
 

@@ -29,6 +29,9 @@ struct CellRow {
     std::string image;                                     // relative to the study directory
     int width = 0, height = 0, maxDepth = 0, threads = 0;
     std::string gitCommit, finishedAt;
+    // MSE over the emitter-edge pixels and the rest (render/emitter_edges.h);
+    // absent for a region without pixels and in rows of older studies.
+    std::optional<double> mseEdge, mseRest;
 };
 
 struct ReferenceRow {
@@ -39,6 +42,9 @@ struct ReferenceRow {
     double noiseMse = 0, noiseRelmse = 0;
     double exposure = 0;
     std::string image;
+    // The noise floors of the two regions and the number of edge pixels.
+    std::optional<double> noiseMseEdge, noiseMseRest;
+    std::optional<int64_t> edgePixels;
 };
 
 class ResultsStore {
@@ -69,6 +75,7 @@ class ResultsStore {
 
   private:
     void exec(const char* sql) const;
+    void addMissingColumns();
     std::vector<CellRow> queryCells(const std::string& where, const CellKey* key) const;
 
     sqlite3* db_ = nullptr;

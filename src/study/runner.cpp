@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "metrics/error_map.h"
+#include "render/emitter_edges.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/loader.h"
@@ -39,6 +40,10 @@ struct SceneJob {
     std::unique_ptr<RenderScene> render;
     std::string cacheKey;
     std::string contentHash;  // sceneContentHash
+    // The emitter-edge pixels at the study's resolution (emitterEdgePixels):
+    // every MSE is also reported over them and over the rest.
+    std::vector<uint8_t> edgeMask;
+    int64_t edgePixels = 0;
 };
 
 // Everything a cell needs besides its key.
@@ -232,7 +237,10 @@ std::vector<SceneJob> loadScenes(const StudySpec& spec) {
         }
         const std::string key = referenceCacheKey(description, s, spec);
         const std::string hash = sceneContentHash(description, s);
-        jobs.push_back({s, std::make_unique<RenderScene>(std::move(description)), key, hash});
+        SceneJob job{s, std::make_unique<RenderScene>(std::move(description)), key, hash, {}, 0};
+        job.edgeMask = emitterEdgePixels(*job.render, spec.resolution);
+        job.edgePixels = std::count(job.edgeMask.begin(), job.edgeMask.end(), uint8_t(1));
+        jobs.push_back(std::move(job));
     }
     return jobs;
 }
@@ -264,7 +272,9 @@ Reference obtainReference(const SceneJob& job, StudyContext& ctx) {
                              " spp " + ctx.spec.reference.sampler + ", " +
                              std::to_string(ctx.spec.resolution.x) + "x" +
                              std::to_string(ctx.spec.resolution.y) + ")";
-    if (auto cached = cache.load(job.cacheKey)) {
+    // An entry's region floors were measured over the mask it was rendered
+    // with; one whose edge count differs is from another mask: rendered again.
+    if (auto cached = cache.load(job.cacheKey); cached && cached->edgePixels == job.edgePixels) {
         ctx.progress.message("reference: cached " + what);
         ++ctx.run.referencesReused;
         return std::move(*cached);
@@ -272,19 +282,22 @@ Reference obtainReference(const SceneJob& job, StudyContext& ctx) {
     const fs::path own = ctx.options.dir / "references" / (job.scene.name + ".exr");
     for (const ReferenceRow& row : ctx.store.references()) {
         if (row.scene != job.scene.name || row.cacheKey != job.cacheKey) continue;
+        if (row.edgePixels != job.edgePixels || !row.noiseMseRest) break;  // an older study
         if (!fs::is_regular_file(own)) break;
         ctx.progress.message("reference: from the study directory " + what);
         Reference r{readImage(own.string()),
                     row.seconds,
-                    {row.noiseMse, row.noiseRelmse},
+                    {row.noiseMse, row.noiseRelmse, row.noiseMseEdge, row.noiseMseRest},
                     float(row.exposure),
-                    row.cacheKey};
+                    row.cacheKey,
+                    job.edgePixels};
         cache.store(r, job.scene, ctx.spec);
         ++ctx.run.referencesReused;
         return r;
     }
     ctx.progress.message("rendering reference: " + what);
-    Reference r = renderReference(*job.render, ctx.spec, ctx.options.threads, job.cacheKey);
+    Reference r =
+        renderReference(*job.render, ctx.spec, ctx.options.threads, job.cacheKey, job.edgeMask);
     cache.store(r, job.scene, ctx.spec);
     ++ctx.run.referencesRendered;
     ctx.progress.addWorkDone(pixels(ctx.spec) * ctx.spec.reference.spp);
@@ -297,7 +310,8 @@ void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ct
     writeImage((ctx.options.dir / (stem + ".png")).string(), ref.image, ref.exposure);
     ctx.store.putReference({job.scene.name, ctx.spec.reference.sampler, ctx.spec.reference.spp,
                             ref.seconds, ref.cacheKey, ref.noise.mse, ref.noise.relmse,
-                            ref.exposure, stem + ".exr"});
+                            ref.exposure, stem + ".exr", ref.noise.mseEdge, ref.noise.mseRest,
+                            ref.edgePixels});
 }
 
 // The images first, each renamed into place; the row last, in one
@@ -400,7 +414,9 @@ void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
                 ctx.spec.maxDepth,
                 ctx.threads,
                 sourceGitCommit(),
-                isoTimestampUtc()};
+                isoTimestampUtc(),
+                m.mseEdge,
+                m.mseRest};
     ctx.store.putCell(row);
     ++ctx.run.cellsRendered;
     ctx.progress.rendered(cellLabel(cell.key), cellWork(ctx.spec, cell.key));
@@ -461,7 +477,7 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
     }
     const Reference ref = obtainReference(job, ctx);
     recordReference(job, ref, ctx);
-    const CellMeter meter(ref.image, ref.exposure, ctx.spec);
+    const CellMeter meter(ref.image, ref.exposure, ctx.spec, &job.edgeMask);
     for (const CellRender& cells : planRenders(todo)) renderCells(job, ref, meter, cells, ctx);
 }
 

@@ -43,6 +43,26 @@ std::string ratioCell(const Json& sampler, const std::string& spp) {
     return format("%.3f", ratios.at(spp).get<double>()) + (floor ? "*" : " ");
 }
 
+// A sampler's ratio over one region ("edge" or "rest") at `spp`, or "-".
+std::string regionCell(const Json& sampler, const char* region, const std::string& spp) {
+    const Json& ratios = sampler.at("mse_ratio_by_region").at(region);
+    if (ratios.is_null() || !ratios.contains(spp) || ratios.at(spp).is_null()) return "-";
+    return format("%.3f", ratios.at(spp).get<double>());
+}
+
+// "emitter edge: 112 of 65536 pixels, 86% of independent's error at 16 spp".
+std::string regionLine(const Json& scene, const std::string& spp) {
+    const Json& regions = scene.at("regions");
+    if (regions.is_null()) return "";
+    std::string out = "  emitter edge: " + regions.at("edge_pixels").dump() + " of " +
+                      regions.at("pixels").dump() + " pixels";
+    const Json& share = regions.at("independent_edge_share");
+    if (!share.is_null() && share.contains(spp) && !share.at(spp).is_null())
+        out += format(", %.0f%%", 100 * share.at(spp).get<double>()) +
+               " of independent's error at " + spp + " spp";
+    return out + "\n";
+}
+
 std::string sceneHeader(const std::string& name, const Json& scene,
                         const std::vector<ReferenceRow>& references) {
     std::string out = name;
@@ -58,12 +78,20 @@ std::string sceneHeader(const std::string& name, const Json& scene,
 std::string sceneTable(const std::string& name, const Json& scene,
                        const std::vector<ReferenceRow>& references) {
     const std::vector<std::string> columns = ratioColumns(scene);
-    std::string out = sceneHeader(name, scene, references);
+    const std::string last = columns.empty() ? "" : columns.back();
+    const bool regions = !scene.at("regions").is_null() && !last.empty();
+    std::string out =
+        sceneHeader(name, scene, references) + (regions ? regionLine(scene, last) : "");
     char line[256];
     std::snprintf(line, sizeof line, "  %-12s %7s", "sampler", "slope");
     out += line;
     for (const std::string& spp : columns) {
         std::snprintf(line, sizeof line, "  %9s", ("ind@" + spp).c_str());
+        out += line;
+    }
+    if (regions) {
+        std::snprintf(line, sizeof line, "  %9s  %9s", ("edge@" + last).c_str(),
+                      ("rest@" + last).c_str());
         out += line;
     }
     out += "  time to target\n";
@@ -74,6 +102,11 @@ std::string sceneTable(const std::string& name, const Json& scene,
         out += line;
         for (const std::string& spp : columns) {
             std::snprintf(line, sizeof line, "  %9s", ratioCell(s, spp).c_str());
+            out += line;
+        }
+        if (regions) {
+            std::snprintf(line, sizeof line, "  %9s  %9s", regionCell(s, "edge", last).c_str(),
+                          regionCell(s, "rest", last).c_str());
             out += line;
         }
         const Json& t = s.at("time_to_target_seconds");
@@ -92,7 +125,9 @@ std::string summaryTable(const Json& analysis, const std::vector<ReferenceRow>& 
     out +=
         "slope: of log(MSE - noise floor) against log spp; ind@N: MSE ratio to independent\n"
         "at N spp (below 1 is better); * within 2× the reference's noise floor, not\n"
-        "meaningful; time to target: render time to reach standard's MSE at its largest spp.\n";
+        "meaningful; edge@N, rest@N: the same ratio over the pixels a visible emitter's\n"
+        "outline crosses and over all others; time to target: render time to reach\n"
+        "standard's MSE at its largest spp.\n";
     return out;
 }
 
