@@ -8,6 +8,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "render/emitter_edges.h"
+#include "scene/builtin_scenes.h"
 #include "study_test_util.h"
 
 namespace pathlab {
@@ -104,6 +106,21 @@ TEST(StudyRegions, RegionMsesAddUpToTheImagesMse) {
         EXPECT_NEAR((*c.mseEdge * edge + *c.mseRest * (pixels - edge)) / pixels, c.mse,
                     1e-9 * c.mse);
     }
+    // The report's picture of the region: the reference with the edge in cyan.
+    const Image marked = readImage((dir / "out" / "references" / "cornell-box-edge.png").string());
+    const Image plain = readImage((dir / "out" / "references" / "cornell-box.png").string());
+    const auto mask = emitterEdgePixels(RenderScene(cornellBoxScene()), {32, 32});
+    int differ = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+        const int x = int(i % 32), y = int(i / 32);
+        const Vec3f m = marked.at(x, y), p = plain.at(x, y);
+        if (mask[i]) {
+            EXPECT_TRUE(m.x == 0 && m.y == 1 && m.z == 1) << x << "," << y;
+        } else {
+            differ += m.x != p.x || m.y != p.y || m.z != p.z;
+        }
+    }
+    EXPECT_EQ(differ, 0);
     // The analysis reports the split, with independent's share of the error.
     const auto analysis = nlohmann::json::parse(testing::slurpFile(dir / "out" / "analysis.json"));
     const auto& regions = analysis["scenes"]["cornell-box"]["regions"];

@@ -231,15 +231,15 @@ def results_table(study, scene):
 
 
 def region_spps(study, scene, ratios):
-    """The spp of the summary table that the region ratios have."""
+    """Every spp of a short list (up to four), else those of the summary table."""
     spps = study.spps(scene)
-    wanted = [n for n in TABLE_SPPS if n in spps]
+    wanted = list(spps) if len(spps) <= 4 else [n for n in TABLE_SPPS if n in spps]
     if spps and spps[-1] not in wanted:
         wanted.append(spps[-1])
     return [n for n in wanted if str(n) in ratios]
 
 
-def regions_section(study, scene):
+def regions_section(study, scene, edge_png):
     """Ratios to independent over the pixels a visible emitter's outline crosses and
     over the rest (analysis.json "regions"), or nothing when the study lacks them."""
     runner = study.runner_analysis.get("scenes", {}).get(scene, {})
@@ -269,9 +269,14 @@ def regions_section(study, scene):
             "between the emitter and its surroundings, and a sampler acts on it only through "
             "the pixel dimensions; everywhere else the error is that of the light transport. "
             "MSE ratios to independent over each region, each less its own noise floor.")
-    return (f'<h3>Where the error is</h3><table class="results regions"><thead><tr><th>sampler'
-            f'</th>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>'
-            f'<p class="note">{note}</p>')
+    table = (f'<table class="results regions"><thead><tr><th>sampler</th>{head}</tr></thead>'
+             f'<tbody>{"".join(rows)}</tbody></table>')
+    if edge_png:
+        table = (f'<div class="regions-host">{table}<figure class="edge-map"><img src="'
+                 f'{esc(edge_png)}" alt="emitter-edge pixels of {esc(scene)}"><figcaption>'
+                 f'Emitter-edge pixels in cyan</figcaption></figure></div>')
+    return f'<h3>Where the error is</h3>{table}<p class="note">{note}</p>'
+
 
 
 def findings(study, scene):
@@ -348,7 +353,7 @@ def scene_section(study, scene, data, figure_names):
   <a href="figures/{esc(combined)}.png">PNG</a>.</p>
   <h3>Summary</h3>
   {results_table(study, scene)}
-  {regions_section(study, scene)}
+  {regions_section(study, scene, data.get("edge"))}
 </section>"""
 
 
@@ -446,7 +451,9 @@ def build(study, report_dir, assets, pathlab):
         grid_spps = [n for n in GRID_SPPS if n in spps] or spps[:2]
         crop = choose_crop(study, scene, grid_spps, width, height)
         data = {"name": scene, "slug": s, "width": width, "height": height,
-                "reference": reference, "samplers": study.samplers(scene), "spps": spps,
+                "reference": reference,
+                "edge": copier.copy(study.path(f"references/{scene}-edge.png"),
+                                    f"images/{s}/reference-edge.png"), "samplers": study.samplers(scene), "spps": spps,
                 "gridSpps": grid_spps, "crop": crop,
                 "images": scene_images(study, scene, copier)}
         figure_names = figures.convergence_figures(study, scene, figures_dir, s)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -304,10 +305,24 @@ Reference obtainReference(const SceneJob& job, StudyContext& ctx) {
     return r;
 }
 
+// The reference with its emitter-edge pixels painted cyan (full green and
+// blue at the viewing exposure), for the report to show where they are.
+Image withEdgeMarked(const Image& reference, const std::vector<uint8_t>& edgeMask, float exposure) {
+    Image marked = reference;
+    const float full = std::exp2(-exposure);  // 1 after the exposure is applied
+    for (size_t i = 0; i < edgeMask.size(); ++i)
+        if (edgeMask[i])
+            marked.set(int(i % size_t(marked.width)), int(i / size_t(marked.width)),
+                       Vec3f(0, full, full));
+    return marked;
+}
+
 void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ctx) {
     const std::string stem = "references/" + job.scene.name;
     writeImage((ctx.options.dir / (stem + ".exr")).string(), ref.image);
     writeImage((ctx.options.dir / (stem + ".png")).string(), ref.image, ref.exposure);
+    writeImage((ctx.options.dir / (stem + "-edge.png")).string(),
+               withEdgeMarked(ref.image, job.edgeMask, ref.exposure), ref.exposure);
     ctx.store.putReference({job.scene.name, ctx.spec.reference.sampler, ctx.spec.reference.spp,
                             ref.seconds, ref.cacheKey, ref.noise.mse, ref.noise.relmse,
                             ref.exposure, stem + ".exr", ref.noise.mseEdge, ref.noise.mseRest,
