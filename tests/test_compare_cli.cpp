@@ -11,6 +11,9 @@
 
 #include "cli_runner.h"
 #include "core/image.h"
+#include "metrics/image_metrics.h"
+#include "render/emitter_edges.h"
+#include "scene/builtin_scenes.h"
 
 namespace pathlab {
 namespace {
@@ -188,6 +191,29 @@ TEST_F(CompareCli, UnwritableErrorMapFailsBeforeWorkAndLeavesNothing) {
                     name == "stderr.txt")
             << "unexpected file " << name;
     }
+}
+
+// --regions SCENE: the MSE over the pixels where the scene's light has its
+// outline (framed at the images' size) and elsewhere, as the study reports it.
+TEST_F(CompareCli, RegionsSplitTheMseByTheScenesEmitterEdge) {
+    const std::string a = writePattern("a.exr", 40, 30, 0.0f),
+                      b = writePattern("b.exr", 40, 30, 0.05f);
+    const CliResult r = run(a + " " + b + " --metric mse --json --regions cornell-box");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const auto mask = emitterEdgePixels(RenderScene(cornellBoxScene()), {40, 30});
+    const RegionMse expected = meanSquaredErrorByRegion(readImage(a), readImage(b), mask);
+    ASSERT_GT(expected.insidePixels, 0u);
+    EXPECT_EQ(j["regions"]["edge_pixels"].get<size_t>(), expected.insidePixels);
+    EXPECT_DOUBLE_EQ(j["regions"]["mse_edge"].get<double>(), *expected.inside);
+    EXPECT_DOUBLE_EQ(j["regions"]["mse_rest"].get<double>(), *expected.outside);
+    EXPECT_EQ(j["regions"]["scene"], "cornell-box");
+    const CliResult text = run(a + " " + b + " --metric mse --regions cornell-box");
+    EXPECT_NE(text.out.find("emitter-edge pixels of cornell-box"), std::string::npos) << text.out;
+    const CliResult bad = run(a + " " + b + " --regions no-such-scene");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_EQ(countLines(bad.err), 1) << bad.err;
+    EXPECT_TRUE(bad.out.empty());
 }
 
 TEST_F(CompareCli, BadMetricIsAUsageError) {

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -11,6 +13,8 @@
 #include "metrics/error_map.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
+#include "render/emitter_edges.h"
+#include "scene/loader.h"
 
 namespace pathlab::cli {
 namespace {
@@ -21,7 +25,8 @@ struct CompareArgs {
     bool json = false;
     std::string errorMap;
     bool ldr = false, hdr = false;
-    std::string ppd;  // "": the default viewing conditions; else parsePpd
+    std::string ppd;      // "": the default viewing conditions; else parsePpd
+    std::string regions;  // a scene: also split the MSE by its emitter edge
 };
 
 // FLIP's filters grow with the pixels per degree (and with them the memory
@@ -47,6 +52,7 @@ float parsePpd(const std::string& text) {
 struct CompareResults {
     double mse = 0, rmse = 0, relmse = 0, psnr = 0;
     bool hasPixelMetrics = false;
+    std::optional<RegionMse> regions;  // with --regions
     std::unique_ptr<flip::Result> flip;
 };
 
@@ -55,7 +61,7 @@ bool wants(const CompareArgs& a, const char* metric) {
 }
 
 CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const Image& test,
-                              float ppd) {
+                              float ppd, const std::vector<uint8_t>* edgeMask) {
     CompareResults out;
     if (args.metric != "flip") {
         out.hasPixelMetrics = true;
@@ -63,6 +69,7 @@ CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const I
         out.rmse = std::sqrt(out.mse);
         out.relmse = relativeMeanSquaredError(ref, test);
         out.psnr = psnrFromMse(out.mse);
+        if (edgeMask) out.regions = meanSquaredErrorByRegion(ref, test, *edgeMask);
     }
     if (wants(args, "flip") || !args.errorMap.empty()) {
         flip::Options options;
@@ -105,6 +112,15 @@ void printJson(const CompareArgs& args, const CompareResults& r) {
         }
         if (wants(args, "psnr")) j["psnr"] = finiteOrNull(r.psnr);
     }
+    if (r.regions) {
+        const auto value = [](const std::optional<double>& v) {
+            return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+        };
+        j["regions"] = {{"scene", args.regions},
+                        {"edge_pixels", r.regions->insidePixels},
+                        {"mse_edge", value(r.regions->inside)},
+                        {"mse_rest", value(r.regions->outside)}};
+    }
     if (r.flip) j["flip"] = flipJson(*r.flip);
     std::printf("%s\n", j.dump().c_str());
 }
@@ -116,6 +132,16 @@ void printText(const CompareArgs& args, const CompareResults& r) {
         if (wants(args, "relmse"))
             std::printf("relmse  %.6g  (epsilon %g)\n", r.relmse, kRelMseEpsilon);
         if (wants(args, "psnr")) std::printf("psnr    %.4f dB\n", r.psnr);
+    }
+    if (r.regions) {
+        const auto value = [](const std::optional<double>& v) {
+            char text[32] = "-";
+            if (v) std::snprintf(text, sizeof text, "%.6g", *v);
+            return std::string(text);
+        };
+        std::printf("regions mse %s on the %zu emitter-edge pixels of %s, %s elsewhere\n",
+                    value(r.regions->inside).c_str(), r.regions->insidePixels, args.regions.c_str(),
+                    value(r.regions->outside).c_str());
     }
     if (r.flip) {
         const flip::Result& f = *r.flip;
@@ -139,7 +165,12 @@ void runCompare(const CompareArgs& args) {
     const Image ref = readImage(args.reference);
     const Image test = readImage(args.test);
     requireComparable(ref, test, args.reference, args.test);
-    const CompareResults results = computeMetrics(args, ref, test, ppd);
+    // The scene's emitter edge as its camera frames an image of this size.
+    std::vector<uint8_t> edgeMask;
+    if (!args.regions.empty())
+        edgeMask = emitterEdgePixels(RenderScene(loadScene(args.regions)), {ref.width, ref.height});
+    const CompareResults results =
+        computeMetrics(args, ref, test, ppd, args.regions.empty() ? nullptr : &edgeMask);
     if (!args.errorMap.empty())
         writeErrorMap(args.errorMap, results.flip->errorMap, results.flip->width,
                       results.flip->height);
@@ -171,6 +202,9 @@ void addCompareCommand(CLI::App& app) {
         "--ppd", args->ppd,
         "FLIP pixels per degree, 1 to 1000 (default 67.02: 0.7 m from a 0.7 m wide 3840 px "
         "display)");
+    cmd->add_option("--regions", args->regions,
+                    "Also the MSE over the pixels where SCENE's visible emitters have their "
+                    "outline (as its camera frames an image of this size) and over the rest");
     cmd->callback([args] { runCompare(*args); });
 }
 
