@@ -301,6 +301,13 @@ def findings(study, scene):
         best = min(times, key=times.get)
         items.append(f"First to the target error: <b>{esc(best)}</b> "
                      f"({fmt(times[best])} s).")
+    regions = study.runner_analysis.get("scenes", {}).get(scene, {}).get("regions") or {}
+    share = (regions.get("independent_edge_share") or {}).get(str(top))
+    if regions.get("edge_pixels") and share is not None:
+        items.append(f"{100 * share:.0f}% of <b>independent</b>'s error at {top} spp lies on "
+                     f"the {regions['edge_pixels']} pixels of the emitters' outline "
+                     f"({100 * regions['edge_pixels'] / regions['pixels']:.2g}% of the image): "
+                     f"see <i>Where the error is</i>.")
     return "<ul class=\"findings\">" + "".join(f"<li>{i}</li>" for i in items) + "</ul>"
 
 
