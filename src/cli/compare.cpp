@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/json_null.h"
 #include "metrics/error_map.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
@@ -113,13 +114,10 @@ void printJson(const CompareArgs& args, const CompareResults& r) {
         if (wants(args, "psnr")) j["psnr"] = finiteOrNull(r.psnr);
     }
     if (r.regions) {
-        const auto value = [](const std::optional<double>& v) {
-            return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-        };
         j["regions"] = {{"scene", args.regions},
                         {"edge_pixels", r.regions->insidePixels},
-                        {"mse_edge", value(r.regions->inside)},
-                        {"mse_rest", value(r.regions->outside)}};
+                        {"mse_edge", orNull<nlohmann::json>(r.regions->inside)},
+                        {"mse_rest", orNull<nlohmann::json>(r.regions->outside)}};
     }
     if (r.flip) j["flip"] = flipJson(*r.flip);
     std::printf("%s\n", j.dump().c_str());

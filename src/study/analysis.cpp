@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "core/json_null.h"
+
 namespace pathlab {
 namespace {
 
@@ -91,10 +93,6 @@ std::vector<SceneCells> groupCells(const std::vector<CellRow>& cells,
     return scenes;
 }
 
-Json orNull(const std::optional<double>& v) {
-    return v ? Json(*v) : Json(nullptr);
-}
-
 double corrected(double value, double floor) {
     return std::max(value - floor, 0.0);
 }
@@ -132,33 +130,20 @@ Json bySppJson(const std::vector<SppSummary>& curve, const SceneCells& scene) {
     return out;
 }
 
+// Per spp, a sampler's MSE over independent's, both less `floor`: `mse`
+// picks the whole image's or one region's (null where either side lacks it,
+// or independent's is not above the floor). Null without `independent` or a
+// floor (a region the reference did not measure).
+template <class Mse>
 Json ratioJson(const std::vector<SppSummary>& curve, const std::vector<SppSummary>* independent,
-               double floor) {
-    if (!independent) return nullptr;
-    Json out = Json::object();
-    for (const SppSummary& s : curve) {
-        auto base = std::find_if(independent->begin(), independent->end(),
-                                 [&](const SppSummary& b) { return b.spp == s.spp; });
-        if (base == independent->end()) continue;
-        const double denominator = corrected(base->mse, floor);
-        out[std::to_string(s.spp)] =
-            denominator > 0 ? Json(corrected(s.mse, floor) / denominator) : Json(nullptr);
-    }
-    return out;
-}
-
-// The same ratio over one region of the image (`field` of SppSummary), each
-// MSE less that region's own noise floor; null where either side lacks it.
-Json regionRatioJson(const std::vector<SppSummary>& curve,
-                     const std::vector<SppSummary>* independent,
-                     std::optional<double> SppSummary::*field, std::optional<double> floor) {
+               Mse mse, std::optional<double> floor) {
     if (!independent || !floor) return nullptr;
     Json out = Json::object();
     for (const SppSummary& s : curve) {
         auto base = std::find_if(independent->begin(), independent->end(),
                                  [&](const SppSummary& b) { return b.spp == s.spp; });
         if (base == independent->end()) continue;
-        const std::optional<double> mine = s.*field, theirs = (*base).*field;
+        const std::optional<double> mine = mse(s), theirs = mse(*base);
         const double denominator = theirs ? corrected(*theirs, *floor) : 0.0;
         out[std::to_string(s.spp)] =
             mine && denominator > 0 ? Json(corrected(*mine, *floor) / denominator) : Json(nullptr);
@@ -223,16 +208,19 @@ Json sceneJson(const SceneCells& scene, std::optional<double> budget) {
 
     const std::vector<SppSummary>* base =
         independent != curves.end() ? &independent->second : nullptr;
+    const auto whole = [](const SppSummary& s) { return std::optional<double>(s.mse); };
+    const auto edge = [](const SppSummary& s) { return s.mseEdge; };
+    const auto rest = [](const SppSummary& s) { return s.mseRest; };
     Json samplers = Json::object();
     for (const SamplerCells& s : scene.samplers) {
         const std::vector<SppSummary>& curve = curves[s.name];
         samplers[s.name] = {
             {"slope_mse", orNull(convergenceSlope(curve, scene.noiseMse, false))},
             {"slope_relmse", orNull(convergenceSlope(curve, scene.noiseRelmse, true))},
-            {"mse_ratio_to_independent", ratioJson(curve, base, scene.noiseMse)},
+            {"mse_ratio_to_independent", ratioJson(curve, base, whole, scene.noiseMse)},
             {"mse_ratio_by_region",
-             {{"edge", regionRatioJson(curve, base, &SppSummary::mseEdge, scene.noiseMseEdge)},
-              {"rest", regionRatioJson(curve, base, &SppSummary::mseRest, scene.noiseMseRest)}}},
+             {{"edge", ratioJson(curve, base, edge, scene.noiseMseEdge)},
+              {"rest", ratioJson(curve, base, rest, scene.noiseMseRest)}}},
             {"time_to_target_seconds", orNull(timeToReach(errorCurve(curve), targetMse))},
             {"error_at_time_budget", equalTimeJson(curve, budget, scene.noiseMse)},
             {"by_spp", bySppJson(curve, scene)}};

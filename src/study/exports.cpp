@@ -2,16 +2,13 @@
 
 #include <cstdio>
 
+#include "core/json_null.h"
 #include "study/files.h"
 
 namespace pathlab {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-Json orNull(const std::optional<double>& v) {
-    return v ? Json(*v) : Json(nullptr);
-}
 
 Json cellJson(const CellRow& c) {
     return {{"scene", c.key.scene},

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/json_null.h"
 #include "core/paths.h"
 #include "render/renderer.h"
 #include "study/content_hash.h"
@@ -84,15 +85,6 @@ void hashScene(ContentHash& h, const SceneDescription& scene, const StudyScene& 
     hashMaterials(h, scene);
     hashGeometry(h, scene);
     if (source.source != source.name) h.file(source.source);  // a file scene
-}
-
-std::optional<double> optionalNumber(const nlohmann::json& value) {
-    if (value.is_null()) return std::nullopt;
-    return value.get<double>();
-}
-
-nlohmann::json jsonOrNull(const std::optional<double>& value) {
-    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
 }  // namespace
@@ -181,8 +173,8 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
                                  {"seconds", r.seconds},
                                  {"noise_mse", r.noise.mse},
                                  {"noise_relmse", r.noise.relmse},
-                                 {"noise_mse_edge", jsonOrNull(r.noise.mseEdge)},
-                                 {"noise_mse_rest", jsonOrNull(r.noise.mseRest)},
+                                 {"noise_mse_edge", orNull<nlohmann::json>(r.noise.mseEdge)},
+                                 {"noise_mse_rest", orNull<nlohmann::json>(r.noise.mseRest)},
                                  {"edge_pixels", r.edgePixels},
                                  {"exposure", r.exposure},
                                  {"created_at", isoTimestampUtc()},

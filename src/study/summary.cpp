@@ -36,18 +36,22 @@ std::vector<std::string> ratioColumns(const Json& scene) {
     return out;
 }
 
-std::string ratioCell(const Json& sampler, const std::string& spp) {
-    const Json& ratios = sampler.at("mse_ratio_to_independent");
+// A ratio table's entry at `spp` to three decimals, or "-" where it has none.
+std::string ratioText(const Json& ratios, const std::string& spp) {
     if (ratios.is_null() || !ratios.contains(spp) || ratios.at(spp).is_null()) return "-";
+    return format("%.3f", ratios.at(spp).get<double>());
+}
+
+std::string ratioCell(const Json& sampler, const std::string& spp) {
+    const std::string text = ratioText(sampler.at("mse_ratio_to_independent"), spp);
+    if (text == "-") return text;
     const bool floor = sampler.at("by_spp").at(spp).value("below_noise_floor", false);
-    return format("%.3f", ratios.at(spp).get<double>()) + (floor ? "*" : " ");
+    return text + (floor ? "*" : " ");
 }
 
 // A sampler's ratio over one region ("edge" or "rest") at `spp`, or "-".
 std::string regionCell(const Json& sampler, const char* region, const std::string& spp) {
-    const Json& ratios = sampler.at("mse_ratio_by_region").at(region);
-    if (ratios.is_null() || !ratios.contains(spp) || ratios.at(spp).is_null()) return "-";
-    return format("%.3f", ratios.at(spp).get<double>());
+    return ratioText(sampler.at("mse_ratio_by_region").at(region), spp);
 }
 
 // "emitter edge: 112 of 65536 pixels, 86% of independent's error at 16 spp".
