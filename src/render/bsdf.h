@@ -78,7 +78,10 @@ inline std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) co
     if (kind_ != BsdfKind::Diffuse) return sampleNonDiffuse(wo, uLobe, u);
     if (wo.z == 0) return std::nullopt;
     Vec3f wi = sampleCosineHemisphere(u);
-    if (wo.z < 0) wi.z = -wi.z;
+    // Into wo's hemisphere: wi.z ≥ +0, so this is −wi.z exactly when wo.z < 0.
+    // A select rather than a branch — which side wo lies on changes from wall
+    // to wall and mispredicted.
+    wi.z = std::copysign(wi.z, wo.z);
     if (wi.z == 0) return std::nullopt;
     return BsdfSample{wi, color_ * kInvPi, cosineHemispherePdf(std::abs(wi.z)), false};
 }

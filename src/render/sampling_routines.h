@@ -53,16 +53,17 @@ inline Vec2f cosSinTurn(float t) {
 // Shirley–Chiu concentric mapping: area-preserving and low-distortion. The
 // angle within a wedge is (π/4)·(ratio of the coordinates), so its cosine
 // and sine come from cosSinQuarterPi; the upper/lower wedges are the
-// left/right ones turned by π/2 (cos and sin swap).
+// left/right ones turned by π/2 (cos and sin swap). The wedge is chosen by
+// selects, not a branch: with random u it is a coin toss per bounce, and its
+// misprediction cost more than the arithmetic.
 inline Vec2f sampleConcentricDisk(Vec2f u) {
     const float ox = 2 * u.x - 1, oy = 2 * u.y - 1;
     if (ox == 0 && oy == 0) return {0, 0};
-    if (std::abs(ox) > std::abs(oy)) {
-        const Vec2f cs = cosSinQuarterPi((kPi / 4) * (oy / ox));
-        return {ox * cs.x, ox * cs.y};
-    }
-    const Vec2f cs = cosSinQuarterPi((kPi / 4) * (ox / oy));
-    return {oy * cs.y, oy * cs.x};
+    const bool xMajor = std::abs(ox) > std::abs(oy);
+    const float r = xMajor ? ox : oy, other = xMajor ? oy : ox;
+    const Vec2f cs = cosSinQuarterPi((kPi / 4) * (other / r));
+    const float along = xMajor ? cs.x : cs.y, across = xMajor ? cs.y : cs.x;
+    return {r * along, r * across};
 }
 
 // Malley's method: project the concentric disk onto the hemisphere; pdf cosθ/π.

@@ -81,6 +81,10 @@ EmbreeAccel::~EmbreeAccel() {
     if (device_) rtcReleaseDevice(device_);
 }
 
+void RayRecorder::record(const Vec3f& o, const Vec3f& d, float tMax, bool shadow) {
+    perThread_.local().push_back({o, d, tMax, shadow});
+}
+
 std::vector<RecordedRay> RayRecorder::gather() const {
     std::vector<RecordedRay> all;
     for (const auto& rays : perThread_) all.insert(all.end(), rays.begin(), rays.end());

@@ -35,9 +35,11 @@ struct RecordedRay {
 // without locks; gather() concatenates them once rendering is over.
 class RayRecorder {
   public:
-    void record(Vec3f o, Vec3f d, float tMax, bool shadow) {
-        perThread_.local().push_back({o, d, tMax, shadow});
-    }
+    // Out of line and cold: inlined, the copy of o and d into the record made
+    // the query functions spill them and reload them across two stores (a
+    // store-forwarding stall on every ray, recording or not).
+    [[gnu::cold, gnu::noinline]] void record(const Vec3f& o, const Vec3f& d, float tMax,
+                                             bool shadow);
     std::vector<RecordedRay> gather() const;
 
   private:
