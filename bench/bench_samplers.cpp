@@ -1,8 +1,8 @@
 // Nanoseconds per sample for every sampler, drawn the way the renderer draws
-// them: startPixelSample at the start of each path vertex's block, then the
-// block's 1D and 2D draws (light choice, light point, lobe, direction,
-// roulette), for a path of depth 4 — so startPixelSample is amortised over a
-// typical path. Reported per drawn dimension, and separately for 1D and 2D.
+// them on the Cornell box (sampling/sampler_cost.h): a packet's camera samples,
+// then each path's vertex draws, for paths of depth 4 — so startPixelSample is
+// amortised over a typical path. Reported per drawn dimension, and separately
+// for 1D and 2D.
 #include <benchmark/benchmark.h>
 
 #include "sampling/sampler_cost.h"
@@ -21,9 +21,11 @@ void pathDimensions(benchmark::State& state, const std::string& name) {
         [&](auto& s) {
             int x = 0, y = 0, index = 0;
             for (auto _ : state) {
-                benchmark::DoNotOptimize(drawPathDimensions(s, Vec2i{x, y}, index, kDepth));
-                ++paths;
-                if (++index == kSpp) index = 0, x = (x + 1) % kResolution.x, y += x == 0;
+                benchmark::DoNotOptimize(
+                    drawPacketDimensions(s, Vec2i{x, y}, index, kCostPacket, kDepth));
+                paths += kCostPacket;
+                if ((index += kCostPacket) == kSpp)
+                    index = 0, x = (x + 1) % kResolution.x, y += x == 0;
                 y %= kResolution.y;
             }
         },

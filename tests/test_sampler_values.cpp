@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "core/error.h"
 #include "render/path_integrator.h"
 #include "sampler_test_util.h"
 #include "sampling/lowdiscrepancy.h"
+#include "sampling/sampler_cost.h"
 
 namespace pathlab {
 namespace {
@@ -249,15 +251,17 @@ TEST(SamplerValues, IndependentIsPcg32AtTheSampleAndDimensionOffset) {
 
 TEST(SamplerValues, CachedPositioningMatchesAFreshSampler) {
     // Samplers remember the last pixel sample to restart cheaply at the next
-    // vertex; whatever order requests come in, each value must equal what a
-    // fresh sampler gives for the same (pixel, index, dimension).
+    // vertex (the global Sobol' samplers the last 8 of a pixel, by index mod 8);
+    // whatever order requests come in, each value must equal what a fresh
+    // sampler gives for the same (pixel, index, dimension). Indices run over
+    // all 16 samples, so cached ones are also evicted and reused.
     for (const std::string& name : allSamplerNames()) {
         const AnySampler prototype = makeSampler(name, SamplerConfig{16, 5, {8, 8}});
         AnySampler used = prototype;
         std::mt19937 pick(9);
         for (int call = 0; call < 600; ++call) {
             const Vec2i p{int(pick() % 3), int(pick() % 2)};
-            const int index = int(pick() % 5), dim = 2 + int(pick() % 40);
+            const int index = int(pick() % 16), dim = 2 + int(pick() % 40);
             AnySampler fresh = prototype;
             std::visit(
                 [&](auto& s) {
@@ -280,6 +284,45 @@ TEST(SamplerValues, PrecomputedJumpEqualsStepping) {
     for (int k = 0; k < 1000; ++k) stepped.nextUInt();
     jumped.advance(Pcg32::jump(1000));
     EXPECT_EQ(stepped.nextUInt(), jumped.nextUInt());
+}
+
+// Records the (sample index, dimension) of every value drawn.
+struct RecordingSampler {
+    std::vector<std::pair<int, int>> drawn;
+    int index = 0, dimension = 0;
+    int samplesPerPixel() const { return 16; }
+    void startPixelSample(Vec2i, int i, int d) { index = i, dimension = d; }
+    float get1D() {
+        drawn.push_back({index, dimension++});
+        return 0;
+    }
+    Vec2f get2D() {
+        get1D(), get1D();
+        return {};
+    }
+    Vec2f getPixel2D() { return get2D(); }
+};
+
+TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
+    // The sampler microbenchmark draws what the integrator draws at a diffuse
+    // vertex with one light: the pixel (0, 1), then per vertex the light point
+    // (+1, +2), the BSDF direction (+4, +5) and roulette (+6) from vertex 2 on.
+    RecordingSampler s;
+    const int depth = 4, first = 8, count = 3;
+    drawPacketDimensions(s, {5, 6}, first, count, depth);
+    std::multiset<std::pair<int, int>> expected;
+    for (int k = 0; k < count; ++k) {
+        expected.insert({first + k, 0}), expected.insert({first + k, 1});
+        for (int d = 0; d < depth; ++d)
+            for (int offset : {1, 2, 4, 5, 6})
+                if (offset != 6 || d >= 2)
+                    expected.insert({first + k, dims::bounceBase(d) + offset});
+    }
+    const std::multiset<std::pair<int, int>> drawn(s.drawn.begin(), s.drawn.end());
+    EXPECT_EQ(drawn, expected);
+    EXPECT_EQ(s.drawn.size(), size_t(count * dimensionsPerPath(depth)));
+    // The camera samples of the whole packet come first, as in the renderer.
+    for (int k = 0; k < 2 * count; ++k) EXPECT_LT(s.drawn[size_t(k)].second, 2);
 }
 
 }  // namespace

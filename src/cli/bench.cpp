@@ -216,7 +216,7 @@ nlohmann::json samplerShares(const BenchOptions& o) {
     for (size_t i = 0; i < count; ++i) {
         const double frame = median(seconds[i]), ratio = median(ratios[i]);
         const double ns =
-            nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 200000);
+            nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 25000);
         // Dimensions are drawn on every thread at once.
         const double samplerSeconds = ns * 1e-9 * double(dimensions[i]) / o.threadCount();
         rows.push_back({{"sampler", infos[i].name},

@@ -1,8 +1,12 @@
-// What a sampler costs per dimension when drawn the way the path integrator
-// draws: startPixelSample at each vertex's block, then the block's 1D and 2D
-// draws (light choice, light point, lobe, direction, roulette). Shared by the
-// Google Benchmark microbenchmarks and `pathlab bench --samplers`, which
-// multiplies it by the dimensions a frame draws.
+// What a sampler costs per dimension when drawn the way the renderer draws on
+// the Cornell box: the camera rays of a packet of kCostPacket samples first
+// (startPixelSample at dimension 0, getPixel2D each), then each sample's path,
+// vertex by vertex, with the draws of a diffuse vertex and one light — the light
+// point (dims::kLightPoint), the BSDF direction (dims::kBsdfDirection, a second
+// startPixelSample since the lobe dimension between them is skipped) and, from
+// the third vertex on, Russian roulette (dims::kRoulette, pbrt-v4's default).
+// Shared by the Google Benchmark microbenchmarks and `pathlab bench --samplers`,
+// which multiplies it by the dimensions a frame draws.
 #pragma once
 
 #include <string>
@@ -11,31 +15,44 @@
 
 namespace pathlab {
 
-// Pixel 2D plus `depth` vertex blocks: 2 + 7·depth dimensions; returns their sum
-// so the work cannot be optimised away.
+// The renderer's camera-ray packet (scene/embree_accel.h kPacketWidth).
+inline constexpr int kCostPacket = 8;
+// Vertices from this depth on draw the roulette dimension.
+inline constexpr int kCostRouletteDepth = 2;
+
+constexpr int dimensionsPerPath(int depth) {
+    return 2 + 4 * depth + std::max(0, depth - kCostRouletteDepth);
+}
+
+// Samples firstIndex … firstIndex + count − 1 of `pixel`, each a path of
+// `depth` vertices; returns the sum of the values so the work cannot be
+// optimised away.
 template <typename S>
-float drawPathDimensions(S& s, Vec2i pixel, int index, int depth) {
-    s.startPixelSample(pixel, index, dims::kPixel);
-    const Vec2f p = s.getPixel2D();
-    float acc = p.x + p.y;
-    for (int d = 0; d < depth; ++d) {
-        s.startPixelSample(pixel, index, dims::bounceBase(d));
-        acc += s.get1D();
-        const Vec2f light = s.get2D();
-        acc += s.get1D();
-        const Vec2f dir = s.get2D();
-        acc += light.x + light.y + dir.x + dir.y + s.get1D();
+float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
+    float acc = 0;
+    for (int k = 0; k < count; ++k) {
+        s.startPixelSample(pixel, firstIndex + k, dims::kPixel);
+        const Vec2f p = s.getPixel2D();
+        acc += p.x + p.y;
+    }
+    for (int k = 0; k < count; ++k) {
+        for (int d = 0; d < depth; ++d) {
+            const int base = dims::bounceBase(d);
+            s.startPixelSample(pixel, firstIndex + k, base + dims::kLightPoint);
+            const Vec2f light = s.get2D();
+            s.startPixelSample(pixel, firstIndex + k, base + dims::kBsdfDirection);
+            const Vec2f dir = s.get2D();
+            acc += light.x + light.y + dir.x + dir.y;
+            if (d >= kCostRouletteDepth) acc += s.get1D();
+        }
     }
     return acc;
 }
 
-constexpr int dimensionsPerPath(int depth) {
-    return 2 + 7 * depth;
-}
-
-// Single-threaded nanoseconds per dimension over `paths` paths of `depth`
-// vertices, walking pixels of a `resolution` image with `spp` samples each.
+// Single-threaded nanoseconds per dimension over `packets` packets of
+// kCostPacket paths of `depth` vertices, walking pixels of a `resolution`
+// image with `spp` samples each (a multiple of kCostPacket, or fewer).
 double nanosecondsPerDimension(const std::string& sampler, int spp, Vec2i resolution, int depth,
-                               int paths);
+                               int packets);
 
 }  // namespace pathlab

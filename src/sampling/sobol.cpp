@@ -54,9 +54,11 @@ uint64_t SobolImageMapping::index(const uint32_t* matrices, Vec2i p, uint64_t fr
     const uint64_t mask = (uint64_t(1) << m) - 1;
     uint64_t target = ((uint64_t(p.x) & mask) << m) | (uint64_t(p.y) & mask);
     target ^= topBits(matrices, high, m);
+    // A fixed 2m steps, each column masked in or out: testing each bit of the
+    // target was a coin-toss branch per bit (this function was 14% of a
+    // sobol frame).
     uint64_t low = 0;
-    for (int c = 0; target != 0; ++c, target >>= 1)
-        if (target & 1) low ^= inverse[c];
+    for (int c = 0; c < 2 * m; ++c) low ^= inverse[c] & (0 - ((target >> c) & 1));
     return high | low;
 }
 

@@ -69,12 +69,20 @@ class GlobalSobolSamplerT {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        // A path restarts at every vertex with the same pixel sample: inverting
-        // the image mapping once per sample is enough.
-        if (p.x != pixel_.x || p.y != pixel_.y || index != index_) {
-            pixel_ = p;
+        // A path restarts at every vertex with the same pixel sample, and the
+        // renderer first draws the camera rays of kRecentIndices samples, then
+        // their paths: the image mapping is inverted once per pixel sample, and
+        // the last kRecentIndices results are kept (slot index mod
+        // kRecentIndices).
+        if (p.x != pixel_.x || p.y != pixel_.y) pixel_ = p, index_ = -1, recentIndex_.fill(-1);
+        if (index != index_) {
             index_ = index;
-            sobolIndex_ = mapping_->index(matrices_, p, uint64_t(index));
+            const auto slot = size_t(index) % kRecentIndices;
+            if (recentIndex_[slot] != index) {
+                recentIndex_[slot] = index;
+                recentSobolIndex_[slot] = mapping_->index(matrices_, p, uint64_t(index));
+            }
+            sobolIndex_ = recentSobolIndex_[slot];
         }
         dimension_ = std::max(2, dim);
     }
@@ -125,9 +133,13 @@ class GlobalSobolSamplerT {
     const SobolNibbleTable* nibbleTables_;
     std::array<uint32_t, kSobolNibbleDimensions> shifts_{};  // sobol-xor's, by dimension
     std::shared_ptr<const SobolImageMapping> mapping_;
+    // The renderer's camera-ray packet width (scene/embree_accel.h kPacketWidth).
+    static constexpr size_t kRecentIndices = 8;
     Vec2i pixel_{-1, -1};
     int index_ = -1;
     uint64_t sobolIndex_ = 0;
+    std::array<int, kRecentIndices> recentIndex_{};  // of pixel_, reset to −1 (empty) per pixel
+    std::array<uint64_t, kRecentIndices> recentSobolIndex_{};
     int dimension_ = 0;
 };
 
