@@ -25,25 +25,42 @@ class StratifiedSampler {
             if (spp_ % d == 0) nx = d;
         xStrata_ = nx;
         yStrata_ = spp_ / nx;
+        // With N a power of two so are nx and ny: then a stratum's grid
+        // position is a mask and a shift, and dividing by the strata counts is
+        // multiplying by their exact reciprocals — the same bits without the
+        // integer and float divisions.
+        powerOfTwo_ = (spp_ & (spp_ - 1)) == 0;
+        if (powerOfTwo_) {
+            xShift_ = __builtin_ctz(unsigned(xStrata_));
+            invSpp_ = 1.0f / float(spp_);
+            invX_ = 1.0f / float(xStrata_);
+            invY_ = 1.0f / float(yStrata_);
+        }
     }
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        pixel_ = p;
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u);
         index_ = static_cast<uint32_t>(index % spp_);
         dimension_ = dim;
-        cursor_.seek(hashValues(p.x, p.y, seed_, 0x5354u), index, dim);
+        cursor_.seek(pixelHash_, index, dim);
     }
     float get1D() {
         const uint32_t stratum = permutationElement(index_, spp_, strataHash());
         ++dimension_;
-        return clampSample((stratum + cursor_.nextFloat()) / float(spp_));
+        const float v = float(stratum) + cursor_.nextFloat();
+        return clampSample(powerOfTwo_ ? v * invSpp_ : v / float(spp_));
     }
     Vec2f get2D() {
         const uint32_t stratum = permutationElement(index_, spp_, strataHash());
         dimension_ += 2;
-        const int x = int(stratum) % xStrata_, y = int(stratum) / xStrata_;
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
+        if (powerOfTwo_) {
+            const auto x = float(stratum & uint32_t(xStrata_ - 1)), y = float(stratum >> xShift_);
+            return {clampSample((x + dx) * invX_), clampSample((y + dy) * invY_)};
+        }
+        const int x = int(stratum) % xStrata_, y = int(stratum) / xStrata_;
         return {clampSample((x + dx) / float(xStrata_)), clampSample((y + dy) / float(yStrata_))};
     }
     Vec2f getPixel2D() { return get2D(); }
@@ -58,7 +75,11 @@ class StratifiedSampler {
     int spp_;
     uint64_t seed_;
     int xStrata_ = 1, yStrata_ = 1;
-    Vec2i pixel_;
+    bool powerOfTwo_ = false;
+    int xShift_ = 0;
+    float invSpp_ = 1, invX_ = 1, invY_ = 1;
+    Vec2i pixel_{-1, -1};
+    uint64_t pixelHash_ = 0;  // of pixel_, for the jitter cursor
     uint32_t index_ = 0;
     int dimension_ = 0;
     PcgSampleCursor cursor_;
