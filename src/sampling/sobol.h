@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "sampling/lowdiscrepancy.h"
+#include "sampling/pixel_dimension_cache.h"
 #include "sampling/sampler.h"
 
 namespace pathlab {
@@ -157,7 +158,7 @@ class OwenSobolSampler {
         // A path repositions several times per vertex: hash a pixel once, and
         // forget the dimensions' seeds of the pixel before.
         if (p.x != pixel_.x || p.y != pixel_.y)
-            pixel_ = p, pixelHash_ = pixelHash(p, seed_), seeds1DValid_ = seeds2DValid_ = 0;
+            pixel_ = p, pixelHash_ = pixelHash(p, seed_), seeds1D_.clear(), seeds2D_.clear();
         index_ = static_cast<uint32_t>(index);
         dimension_ = dim;
     }
@@ -169,14 +170,14 @@ class OwenSobolSampler {
     // i = R(L_h(R(index))), x = R(L_sx(i)), y = R(L_sy(Z(i))) — four
     // reversals per pair instead of eight, the same bits.
     // The seeds depend on the pixel and the dimension only, so they are kept
-    // for the pixel's other samples (the first kCachedDimensions dimensions).
+    // for the pixel's other samples (PixelDimensionCache).
     float get1D() {
-        const Seeds k = seeds(dimension_++, 0x31, seeds1DValid_, seeds1D_);
+        const Seeds k = seeds(dimension_++, 0x31, seeds1D_);
         const uint32_t i = owenScramble(index_, k.index);
         return fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, foldSeed(k.values))));
     }
     Vec2f get2D() {
-        const Seeds k = seeds(dimension_, 0x32, seeds2DValid_, seeds2D_);
+        const Seeds k = seeds(dimension_, 0x32, seeds2D_);
         dimension_ += 2;
         const uint32_t i = owenScramble(index_, k.index);
         return {fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, uint32_t(k.values)))),
@@ -209,15 +210,11 @@ class OwenSobolSampler {
         uint32_t index = 0;
         uint64_t values = 0;
     };
-    static constexpr int kCachedDimensions = 64;
-    Seeds seeds(int d, uint64_t tag, uint64_t& valid, Seeds* cache) const {
-        const auto compute = [&] {
+    Seeds seeds(int d, uint64_t tag, PixelDimensionCache<Seeds>& cache) const {
+        return cache.get(d, [&] {
             const uint64_t h = mixBits(pixelHash_ ^ (uint64_t(d) << 40 | tag));
             return Seeds{static_cast<uint32_t>(h), mixBits(h)};
-        };
-        if (d >= kCachedDimensions) return compute();
-        if (!((valid >> d) & 1)) cache[d] = compute(), valid |= uint64_t(1) << d;
-        return cache[d];
+        });
     }
 
     int spp_;
@@ -227,8 +224,7 @@ class OwenSobolSampler {
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;
-    uint64_t seeds1DValid_ = 0, seeds2DValid_ = 0;  // bit d: seeds…_[d] is this pixel's
-    Seeds seeds1D_[kCachedDimensions], seeds2D_[kCachedDimensions];
+    PixelDimensionCache<Seeds> seeds1D_, seeds2D_;
 };
 
 namespace zsobol {

@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "sampling/lowdiscrepancy.h"
 #include "sampling/pcg_cursor.h"
+#include "sampling/pixel_dimension_cache.h"
 #include "sampling/sampler.h"
 
 namespace pathlab {
@@ -41,7 +42,7 @@ class StratifiedSampler {
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
         if (p.x != pixel_.x || p.y != pixel_.y)
-            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataValid_ = 0;
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear();
         index_ = static_cast<uint32_t>(index % spp_);
         dimension_ = dim;
         cursor_.seek(pixelHash_, index, dim);
@@ -70,14 +71,10 @@ class StratifiedSampler {
 
   private:
     // The permutation's seed for (pixel, dimension): four chained hash rounds,
-    // the same for all of a pixel's samples, so kept for the first
-    // kCachedDimensions dimensions while the pixel stays.
+    // the same for all of a pixel's samples.
     uint64_t strataHash() {
-        const auto compute = [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); };
-        if (unsigned(dimension_) >= unsigned(kCachedDimensions)) return compute();
-        if (!((strataValid_ >> dimension_) & 1))
-            strataHashes_[dimension_] = compute(), strataValid_ |= uint64_t(1) << dimension_;
-        return strataHashes_[dimension_];
+        return strataHashes_.get(dimension_,
+                                 [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); });
     }
     static float clampSample(float v) { return v < kOneMinusEpsilon ? v : kOneMinusEpsilon; }
 
@@ -88,10 +85,8 @@ class StratifiedSampler {
     int xShift_ = 0;
     float invSpp_ = 1, invX_ = 1, invY_ = 1;
     Vec2i pixel_{-1, -1};
-    uint64_t pixelHash_ = 0;                      // of pixel_, for the jitter cursor
-    static constexpr int kCachedDimensions = 64;  // a depth-8 path draws 58
-    uint64_t strataValid_ = 0;                    // bit d: strataHashes_[d] is pixel_'s
-    uint64_t strataHashes_[kCachedDimensions] = {};
+    uint64_t pixelHash_ = 0;  // of pixel_, for the jitter cursor
+    PixelDimensionCache<uint64_t> strataHashes_;
     uint32_t index_ = 0;
     int dimension_ = 0;
     PcgSampleCursor cursor_;
