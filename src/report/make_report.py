@@ -278,7 +278,6 @@ def regions_section(study, scene, edge_png):
     return f'<h3>Where the error is</h3>{table}<p class="note">{note}</p>'
 
 
-
 def findings(study, scene):
     """One sentence per question a reader asks first."""
     a = study.analysis[scene]["samplers"]
@@ -460,7 +459,8 @@ def build(study, report_dir, assets, pathlab):
         data = {"name": scene, "slug": s, "width": width, "height": height,
                 "reference": reference,
                 "edge": copier.copy(study.path(f"references/{scene}-edge.png"),
-                                    f"images/{s}/reference-edge.png"), "samplers": study.samplers(scene), "spps": spps,
+                                    f"images/{s}/reference-edge.png"),
+                "samplers": study.samplers(scene), "spps": spps,
                 "gridSpps": grid_spps, "crop": crop,
                 "images": scene_images(study, scene, copier)}
         figure_names = figures.convergence_figures(study, scene, figures_dir, s)
