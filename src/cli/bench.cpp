@@ -1,8 +1,8 @@
 // `pathlab bench`: the renderer's throughput on the built-in scenes at a fixed
-// workload (512×512, max depth 8, 64 spp, independent sampler), and where the
-// time goes: the ray-tracing limit (the same frame's rays replayed through
-// Embree alone), thread scaling, memory per million triangles and, with
-// --samplers, each sampler's share of a frame.
+// workload (512×512, max depth 8, 64 spp, independent sampler; the median of
+// --runs frames), and where the time goes: the ray-tracing limit (the same
+// frame's rays replayed through Embree alone), thread scaling, memory per
+// million triangles and, with --samplers, each sampler's share of a frame.
 #include <sys/resource.h>
 #include <tbb/info.h>
 
@@ -30,6 +30,7 @@ struct BenchOptions {
     int size = 512;
     int threads = 0;
     int rounds = 3;  // --samplers: frames per sampler, in rotated order
+    int runs = 3;    // frames per scene (and raw replays per mode); medians are reported
     std::vector<std::string> scenes{"cornell-box", "wolf"};
     int threadCount() const { return threads > 0 ? threads : tbb::info::default_concurrency(); }
 };
@@ -51,8 +52,14 @@ RenderSettings settingsFor(const BenchOptions& o, const std::string& sampler, in
     return s;
 }
 
-double raysPerSecond(const RenderStats& st) {
-    return double(st.rays + st.shadowRays) / st.seconds;
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+double raysPerSecond(const RenderStats& st, double seconds) {
+    return double(st.rays + st.shadowRays) / seconds;
 }
 
 // The frame's rays at 1 spp (same distribution as any spp) replayed through
@@ -69,11 +76,13 @@ nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double render
     double best = 0;
     for (ReplayMode mode : {ReplayMode::Single, ReplayMode::Packet8, ReplayMode::Stream}) {
         replayRays(scene.accel(), rays, mode, o.threads);  // warm caches
-        const ReplayResult r = replayRays(scene.accel(), rays, mode, o.threads);
-        modes[replayModeName(mode)] = r.raysPerSecond();
-        best = std::max(best, r.raysPerSecond());
-        say(o, "  embree alone, %-7s  %10.4g rays/s\n", replayModeName(mode).c_str(),
-            r.raysPerSecond());
+        std::vector<double> rates;
+        for (int run = 0; run < o.runs; ++run)
+            rates.push_back(replayRays(scene.accel(), rays, mode, o.threads).raysPerSecond());
+        const double rate = median(rates);
+        modes[replayModeName(mode)] = rate;
+        best = std::max(best, rate);
+        say(o, "  embree alone, %-7s  %10.4g rays/s\n", replayModeName(mode).c_str(), rate);
     }
     const double efficiency = rendererRaysPerSecond / best;
     say(o, "  efficiency (renderer rays/s / best raw)  %.2f\n", efficiency);
@@ -81,30 +90,52 @@ nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double render
         {"recorded_rays", rays.size()}, {"raw_rays_per_second", modes}, {"efficiency", efficiency}};
 }
 
+// The scene's frame `runs` times. With scaling, each frame on all threads is
+// followed by one on a single thread, and the scaling efficiency is the median
+// of the ratios within those pairs: a shared machine's speed drifts between
+// runs by more than the few percent measured here.
 nlohmann::json benchScene(const std::string& name, RenderScene& scene, const BenchOptions& o) {
-    const RenderStats st = render(scene, settingsFor(o, "independent", o.threads)).stats;
-    say(o, "%-12s %dx%d %3d spp  %8.3f s  %10.4g paths/s  %10.4g rays/s  (%d threads)\n",
-        name.c_str(), o.size, o.size, o.spp, st.seconds, double(st.paths) / st.seconds,
-        raysPerSecond(st), o.threadCount());
+    const bool scaling = o.scaling && o.threadCount() > 1;
+    RenderStats st;
+    std::vector<double> seconds, oneSeconds, scalings;
+    for (int run = 0; run < o.runs; ++run) {
+        st = render(scene, settingsFor(o, "independent", o.threads)).stats;
+        seconds.push_back(st.seconds);
+        if (!scaling) continue;
+        const RenderStats one = render(scene, settingsFor(o, "independent", 1)).stats;
+        oneSeconds.push_back(one.seconds);
+        scalings.push_back(one.seconds / (st.seconds * o.threadCount()));
+    }
+    // Every run traces the same rays: only the time differs.
+    const double time = median(seconds);
+    const auto [fastest, slowest] = std::minmax_element(seconds.begin(), seconds.end());
+    say(o,
+        "%-12s %dx%d %3d spp  %8.3f s  %10.4g paths/s  %10.4g rays/s  (%d threads; median of %d "
+        "runs, %.3f-%.3f s)\n",
+        name.c_str(), o.size, o.size, o.spp, time, double(st.paths) / time, raysPerSecond(st, time),
+        o.threadCount(), o.runs, *fastest, *slowest);
     nlohmann::json r = {{"scene", name},
                         {"width", o.size},
                         {"height", o.size},
                         {"spp", o.spp},
                         {"max_depth", kMaxDepth},
                         {"threads", o.threadCount()},
-                        {"seconds", st.seconds},
+                        {"runs", o.runs},
+                        {"seconds", time},
+                        {"seconds_runs", seconds},
                         {"paths", st.paths},
                         {"rays", st.rays + st.shadowRays},
                         {"shadow_rays", st.shadowRays},
-                        {"paths_per_second", double(st.paths) / st.seconds},
-                        {"rays_per_second", raysPerSecond(st)}};
-    r["ray_limit"] = rayLimit(scene, o, raysPerSecond(st));
-    if (o.scaling && o.threadCount() > 1) {
-        const RenderStats one = render(scene, settingsFor(o, "independent", 1)).stats;
-        const double efficiency = one.seconds / (st.seconds * o.threadCount());
-        say(o, "  1 thread %.3f s; scaling to %d threads: %.1f%% efficient\n", one.seconds,
-            o.threadCount(), 100 * efficiency);
-        r["scaling"] = {{"seconds_1_thread", one.seconds}, {"efficiency", efficiency}};
+                        {"paths_per_second", double(st.paths) / time},
+                        {"rays_per_second", raysPerSecond(st, time)}};
+    r["ray_limit"] = rayLimit(scene, o, raysPerSecond(st, time));
+    if (scaling) {
+        const double efficiency = median(scalings);
+        say(o, "  1 thread %.3f s; scaling to %d threads: %.1f%% efficient (median of %d pairs)\n",
+            median(oneSeconds), o.threadCount(), 100 * efficiency, o.runs);
+        r["scaling"] = {{"seconds_1_thread", median(oneSeconds)},
+                        {"efficiency", efficiency},
+                        {"efficiency_runs", scalings}};
     }
     return r;
 }
@@ -161,12 +192,6 @@ nlohmann::json memoryPerMillionTriangles(const BenchOptions& o) {
             {"peak_rss_mib", double(usage.ru_maxrss) / 1024.0}};
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
 // CPU seconds (user + system, all threads) the process has used so far.
 double processCpuSeconds() {
     rusage usage{};
@@ -215,8 +240,7 @@ nlohmann::json samplerShares(const BenchOptions& o) {
     nlohmann::json rows = nlohmann::json::array();
     for (size_t i = 0; i < count; ++i) {
         const double frame = median(seconds[i]), ratio = median(ratios[i]);
-        const double ns =
-            nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 25000);
+        const double ns = nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 25000);
         // Dimensions are drawn on every thread at once.
         const double samplerSeconds = ns * 1e-9 * double(dimensions[i]) / o.threadCount();
         rows.push_back({{"sampler", infos[i].name},
@@ -266,6 +290,10 @@ void addBenchCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(0, 4096));
     cmd->add_option("--rounds", opts->rounds, "With --samplers: frames per sampler (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--runs", opts->runs,
+                    "Frames per scene and replays per query mode (the median is reported)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));
     cmd->add_option("--scene", opts->scenes, "Scenes to render")->capture_default_str();
