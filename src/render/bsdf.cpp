@@ -7,9 +7,6 @@
 namespace pathlab {
 namespace {
 
-// Below this roughness the GGX lobe is numerically a delta; treat it as one.
-constexpr float kSmoothAlpha = 1e-3f;
-
 // Two-sided opaque surfaces: evaluate with both directions flipped to the
 // upper hemisphere when wo is below.
 inline void flipToUpper(Vec3f& wo, Vec3f& wi) {
@@ -117,11 +114,6 @@ Bsdf Bsdf::conductor(Vec3f eta, Vec3f k, float alpha) {
     b.k_ = k;
     b.alpha_ = alpha;
     return b;
-}
-
-bool Bsdf::isSpecular() const {
-    return kind_ == BsdfKind::Mirror || kind_ == BsdfKind::Dielectric ||
-           (kind_ == BsdfKind::Conductor && alpha_ < kSmoothAlpha);
 }
 
 Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {

@@ -31,7 +31,15 @@ class Bsdf {
 
     BsdfKind kind() const { return kind_; }
     // True when every lobe is a Dirac delta: next-event estimation cannot help.
-    bool isSpecular() const;
+    // Inline: the integrator asks at every vertex, and the diffuse answer is
+    // one comparison.
+    bool isSpecular() const {
+        return kind_ != BsdfKind::Diffuse &&
+               (kind_ != BsdfKind::Conductor || alpha_ < kSmoothConductorAlpha);
+    }
+    // Below this roughness a conductor's GGX lobe is numerically a delta: it
+    // is treated as a perfect mirror.
+    static constexpr float kSmoothConductorAlpha = 1e-3f;
     // Which of sample()'s random numbers it reads: the lobe choice only at
     // glass, the direction only where some lobe is not a delta. The integrator
     // draws no others.

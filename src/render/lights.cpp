@@ -201,13 +201,6 @@ float AreaLight::power() const {
     return luminance(radiance) * area * kPi * (twoSided ? 2 : 1);
 }
 
-Vec3f AreaLight::samplePoint(Vec2f u) const {
-    if (parallelogram) return p0 + e1 * u.x + e2 * u.y;
-    const Vec2f b = sampleUniformTriangle(u);
-    // Barycentrics (b0, b1, b2) of (p0, p0+e1, p0+e2).
-    return p0 + e1 * b.y + e2 * (1 - b.x - b.y);
-}
-
 std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
                                                                 Vec2f u) const {
     if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
@@ -305,32 +298,8 @@ void LightSet::buildDistribution(Vec3f focus) {
     double running = 0;
     for (double w : weight) cdf_.push_back(float((running += w) / total));
     cdf_.back() = 1.0f;
+    onlyAreaLight_ = cdf_.size() == 1 && lights_.size() == 1 && !lights_[0].solidAngleSampling;
 }
-
-namespace {
-
-// Uniform area sampling, the default: the same arithmetic as sampleFrom followed
-// by the direction and distance (so the same bits), with the distance's square
-// root taken once instead of twice. Next-event estimation calls this at every
-// diffuse vertex, and the two dependent roots and divisions were a latency
-// chain in every path.
-std::optional<LightSample> sampleByArea(const AreaLight& light, Vec3f ref, Vec2f u,
-                                        float choicePmf) {
-    if (!light.twoSided && dot(ref - light.p0, light.n) <= 0) return std::nullopt;
-    const Vec3f d = light.samplePoint(u) - ref;
-    const float dist2 = dot(d, d);
-    const float dist = std::sqrt(dist2);
-    const float cosLight = std::abs(dot(light.n, d)) / dist;
-    if (!(cosLight > 0)) return std::nullopt;
-    const float pdf = dist2 / (light.area * cosLight);  // areaDensity
-    if (!(pdf > 0) || !(dist2 > 0) || std::isinf(pdf)) return std::nullopt;
-    const Vec3f wi = d / dist;
-    const Vec3f Le = light.emitted(-wi);
-    if (isBlack(Le)) return std::nullopt;
-    return LightSample{wi, dist, Le, choicePmf * pdf};
-}
-
-}  // namespace
 
 int LightSet::lightOfTriangle(unsigned mesh, unsigned triangle) const {
     return triangleLight_[mesh][triangle];
@@ -340,7 +309,8 @@ float LightSet::pmf(size_t i) const {
     return cdf_[i] - (i == 0 ? 0.0f : cdf_[i - 1]);
 }
 
-std::optional<LightSample> LightSet::sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const {
+std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uChoice,
+                                                  Vec2f u) const {
     if (cdf_.empty()) return std::nullopt;
     const size_t i =
         std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uChoice) - cdf_.begin()),

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "render/sampling_routines.h"
 #include "scene/scene.h"
 
 namespace pathlab {
@@ -46,7 +47,12 @@ struct AreaLight {
     float width = 0, height = 0;
     float power() const;
     // A uniformly distributed point on the light for u in [0,1)².
-    Vec3f samplePoint(Vec2f u) const;
+    Vec3f samplePoint(Vec2f u) const {
+        if (parallelogram) return p0 + e1 * u.x + e2 * u.y;
+        const Vec2f b = sampleUniformTriangle(u);
+        // Barycentrics (b0, b1, b2) of (p0, p0+e1, p0+e2).
+        return p0 + e1 * b.y + e2 * (1 - b.x - b.y);
+    }
     // A point on the light for next-event estimation at `ref`, whose shading
     // normal is `ns` (zero: unknown, no cosine warp), with its density per unit
     // solid angle at ref. Nothing when ref sees only the back of a one-sided
@@ -70,6 +76,27 @@ struct LightSample {
     float pdf;       // solid-angle density, including the light-choice probability
 };
 
+// Uniform area sampling, the default: the same arithmetic as sampleFrom followed
+// by the direction and distance (so the same bits), with the distance's square
+// root taken once instead of twice. Next-event estimation calls this at every
+// diffuse vertex, and the two dependent roots and divisions were a latency
+// chain in every path.
+inline std::optional<LightSample> sampleByArea(const AreaLight& light, Vec3f ref, Vec2f u,
+                                               float choicePmf) {
+    if (!light.twoSided && dot(ref - light.p0, light.n) <= 0) return std::nullopt;
+    const Vec3f d = light.samplePoint(u) - ref;
+    const float dist2 = dot(d, d);
+    const float dist = std::sqrt(dist2);
+    const float cosLight = std::abs(dot(light.n, d)) / dist;
+    if (!(cosLight > 0)) return std::nullopt;
+    const float pdf = dist2 / (light.area * cosLight);  // areaDensity
+    if (!(pdf > 0) || !(dist2 > 0) || std::isinf(pdf)) return std::nullopt;
+    const Vec3f wi = d / dist;
+    const Vec3f Le = light.emitted(-wi);
+    if (isBlack(Le)) return std::nullopt;
+    return LightSample{wi, dist, Le, choicePmf * pdf};
+}
+
 class LightSet {
   public:
     // `focus` is where the environment's share of light choices is judged.
@@ -81,10 +108,19 @@ class LightSet {
     const AreaLight& areaLight(int i) const { return lights_[size_t(i)]; }
     // The light a triangle belongs to, or −1.
     int lightOfTriangle(unsigned mesh, unsigned triangle) const;
+    // lightOfTriangle of all the mesh's triangles, by triangle.
+    const int* trianglesLights(unsigned mesh) const { return triangleLight_[mesh].data(); }
 
     // A light sample for the receiver at `ref` with shading normal `ns` (the zero
     // vector when there is none). uChoice picks the light.
-    std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
+    // A scene lit by one area light sampled by area (every built-in scene but
+    // the environment-lit ones) takes it without the choice: its probability is
+    // cdf_[0] = 1 exactly, so the same bits, and the whole sample is inline in
+    // the integrator, where next-event estimation calls it at every vertex.
+    std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const {
+        if (onlyAreaLight_) return sampleByArea(lights_[0], ref, u, 1.0f);
+        return sampleChosen(ref, ns, uChoice, u);
+    }
     // False when there is at most one light to choose: uChoice is then never read.
     bool choiceUsesSample() const { return cdf_.size() > 1; }
     // Solid-angle pdf (with choice probability) with which sample(ref, ns, …)
@@ -95,12 +131,14 @@ class LightSet {
     Vec3f environment() const { return environment_; }
 
   private:
+    std::optional<LightSample> sampleChosen(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
     float pmf(size_t i) const;
     void buildDistribution(Vec3f focus);
     std::vector<AreaLight> lights_;
     std::vector<std::vector<int>> triangleLight_;  // per mesh, per triangle
     Vec3f environment_;
-    std::vector<float> cdf_;  // over area lights, then the environment if present
+    std::vector<float> cdf_;      // over area lights, then the environment if present
+    bool onlyAreaLight_ = false;  // lights_[0] is the only light, sampled by area
 };
 
 }  // namespace pathlab

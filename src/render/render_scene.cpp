@@ -27,6 +27,13 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
             normals[t] = len > 0 ? n / len : Vec3f(0, 0, 1);
         }
     }
+    for (size_t m = 0; m < desc_.meshes.size(); ++m) {
+        const Mesh& mesh = desc_.meshes[m];
+        meshHits_.push_back({mesh.indices.data(), triangleNormals_[m].data(),
+                             mesh.normals.empty() ? nullptr : mesh.normals.data(),
+                             mesh.uvs.empty() ? nullptr : mesh.uvs.data(),
+                             lights_->trianglesLights(unsigned(m)), mesh.material});
+    }
 }
 
 bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
@@ -55,29 +62,24 @@ void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
         si->material = s.material;
         return;
     }
-    const Mesh& mesh = desc_.meshes[hit.geomId];
-    const unsigned* idx = &mesh.indices[3 * size_t(hit.primId)];
+    const MeshHitData& mesh = meshHits_[hit.geomId];
+    const unsigned* idx = mesh.indices + 3 * size_t(hit.primId);
     const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
-    si->ng = triangleNormals_[hit.geomId][hit.primId];
+    si->ng = mesh.faceNormals[hit.primId];
     si->ns = si->ng;
-    if (!mesh.normals.empty()) {
-        const Vec3f n =
-            mesh.normals[idx[0]] * b0 + mesh.normals[idx[1]] * b1 + mesh.normals[idx[2]] * b2;
+    if (mesh.vertexNormals) {
+        const Vec3f* normals = mesh.vertexNormals;
+        const Vec3f n = normals[idx[0]] * b0 + normals[idx[1]] * b1 + normals[idx[2]] * b2;
         const float len = length(n);
         if (len > 0) si->ns = dot(n, si->ng) < 0 ? -n / len : n / len;
     }
     si->uv = {0, 0};
-    if (!mesh.uvs.empty()) {
+    if (mesh.uvs) {
         const Vec2f t0 = mesh.uvs[idx[0]], t1 = mesh.uvs[idx[1]], t2 = mesh.uvs[idx[2]];
         si->uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
     }
     si->material = mesh.material;
-    si->light = lights_->lightOfTriangle(hit.geomId, hit.primId);
-}
-
-Vec3f RenderScene::offsetOrigin(const SurfaceInteraction& si, Vec3f w) const {
-    const Vec3f offset = si.ng * epsilon_;
-    return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
+    si->light = mesh.triangleLights[hit.primId];
 }
 
 }  // namespace pathlab

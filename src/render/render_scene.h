@@ -39,16 +39,32 @@ class RenderScene {
     const EmbreeAccel& accel() const { return *accel_; }
     // A ray origin nudged off the surface along the geometric normal, on the
     // side of direction w — avoids self-intersection at this scene's scale.
-    Vec3f offsetOrigin(const SurfaceInteraction& si, Vec3f w) const;
+    // (Inline: twice per path vertex.)
+    Vec3f offsetOrigin(const SurfaceInteraction& si, Vec3f w) const {
+        const Vec3f offset = si.ng * epsilon_;
+        return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
+    }
     Bsdf bsdfAt(const SurfaceInteraction& si) const;
 
   private:
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
 
+    // What a hit on mesh geomId reads, gathered in one place: one lookup per
+    // hit instead of a chain through the description, the normals and the lights.
+    struct MeshHitData {
+        const unsigned* indices;
+        const Vec3f* faceNormals;    // per triangle
+        const Vec3f* vertexNormals;  // null: flat shading
+        const Vec2f* uvs;            // null: none
+        const int* triangleLights;   // LightSet::lightOfTriangle, per triangle
+        int material;
+    };
+
     SceneDescription desc_;
     std::unique_ptr<EmbreeAccel> accel_;
     std::unique_ptr<LightSet> lights_;
     std::vector<std::vector<Vec3f>> triangleNormals_;  // per mesh, per triangle
+    std::vector<MeshHitData> meshHits_;                // per mesh
     float epsilon_ = 1e-4f;
 };
 
