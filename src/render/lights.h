@@ -113,8 +113,8 @@ class LightSet {
 
     // A light sample for the receiver at `ref` with shading normal `ns` (the zero
     // vector when there is none). uChoice picks the light.
-    // A scene lit by one area light sampled by area (every built-in scene but
-    // the environment-lit ones) takes it without the choice: its probability is
+    // A scene lit by one area light sampled by area (the Cornell box; the wolf
+    // adds an environment) takes it without the choice: its probability is
     // cdf_[0] = 1 exactly, so the same bits, and the whole sample is inline in
     // the integrator, where next-event estimation calls it at every vertex.
     std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const {
