@@ -19,14 +19,12 @@ void pathDimensions(benchmark::State& state, const std::string& name) {
     int64_t paths = 0;
     std::visit(
         [&](auto& s) {
-            int x = 0, y = 0, index = 0;
+            PacketWalk walk{kSpp, kResolution};
             for (auto _ : state) {
                 benchmark::DoNotOptimize(
-                    drawPacketDimensions(s, Vec2i{x, y}, index, kCostPacket, kDepth));
-                paths += kCostPacket;
-                if ((index += kCostPacket) == kSpp)
-                    index = 0, x = (x + 1) % kResolution.x, y += x == 0;
-                y %= kResolution.y;
+                    drawPacketDimensions(s, walk.pixel, walk.index, walk.count(), kDepth));
+                paths += walk.count();
+                walk.advance();
             }
         },
         sampler);

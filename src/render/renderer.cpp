@@ -21,6 +21,9 @@ namespace pathlab {
 namespace {
 
 constexpr int kTileSize = 16;
+// The samplers size their per-sample caches by the draw order this renderer
+// follows: a packet's camera samples, then its paths.
+static_assert(kPacketWidth == kCameraPacketSamples);
 
 struct Tile {
     int x0, y0, x1, y1;

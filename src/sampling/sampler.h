@@ -47,6 +47,13 @@ constexpr int depthOfDimension(int dim) {
 }
 }  // namespace dims
 
+// The draw order across samples: the renderer draws the pixel dimensions of
+// this many consecutive samples of a pixel first (their camera rays are traced
+// as one packet), then each of their paths in turn. Samplers that keep
+// per-sample state keep it for this many samples; the cost model draws in
+// this order.
+inline constexpr int kCameraPacketSamples = 8;
+
 // What every sampler is constructed from.
 struct SamplerConfig {
     int samplesPerPixel = 1;

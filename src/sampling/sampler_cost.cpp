@@ -12,16 +12,11 @@ double nanosecondsPerDimension(const std::string& sampler, int spp, Vec2i resolu
     const auto start = std::chrono::steady_clock::now();
     std::visit(
         [&](auto& s) {
-            int x = 0, y = 0, index = 0;
+            PacketWalk walk{spp, resolution};
             float acc = 0;
-            for (int p = 0; p < packets; ++p) {
-                const int count = std::min(kCostPacket, spp - index);
-                acc += drawPacketDimensions(s, Vec2i{x, y}, index, count, depth);
-                paths += count;
-                if ((index += count) == spp) {
-                    index = 0;
-                    if (++x == resolution.x) x = 0, y = (y + 1) % resolution.y;
-                }
+            for (int p = 0; p < packets; ++p, walk.advance()) {
+                acc += drawPacketDimensions(s, walk.pixel, walk.index, walk.count(), depth);
+                paths += walk.count();
             }
             sink = acc;
         },

@@ -1,6 +1,6 @@
 // What a sampler costs per dimension when drawn the way the renderer draws on
-// the Cornell box: the camera rays of a packet of kCostPacket samples first
-// (startPixelSample at dimension 0, getPixel2D each), then each sample's path,
+// the Cornell box: the camera rays of a packet of kCameraPacketSamples samples
+// first (startPixelSample at dimension 0, getPixel2D each), then each sample's path,
 // vertex by vertex, with the draws of a diffuse vertex and one light — the light
 // point (dims::kLightPoint), the BSDF direction (dims::kBsdfDirection, a second
 // startPixelSample since the lobe dimension between them is skipped) and, from
@@ -9,14 +9,13 @@
 // which multiplies it by the dimensions a frame draws.
 #pragma once
 
+#include <algorithm>
 #include <string>
 
 #include "sampling/registry.h"
 
 namespace pathlab {
 
-// The renderer's camera-ray packet (scene/embree_accel.h kPacketWidth).
-inline constexpr int kCostPacket = 8;
 // Vertices from this depth on draw the roulette dimension.
 inline constexpr int kCostRouletteDepth = 2;
 
@@ -49,9 +48,24 @@ float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int dep
     return acc;
 }
 
-// Single-threaded nanoseconds per dimension over `packets` packets of
-// kCostPacket paths of `depth` vertices, walking pixels of a `resolution`
-// image with `spp` samples each (a multiple of kCostPacket, or fewer).
+// A walk over an image's samples packet by packet, pixel after pixel (row by
+// row, back to the first pixel after the last): where the next packet starts
+// and how many samples it has (kCameraPacketSamples, or the pixel's rest).
+struct PacketWalk {
+    int spp;
+    Vec2i resolution;
+    Vec2i pixel{0, 0};
+    int index = 0;
+    int count() const { return std::min(kCameraPacketSamples, spp - index); }
+    void advance() {
+        if ((index += count()) < spp) return;
+        index = 0;
+        if (++pixel.x == resolution.x) pixel.x = 0, pixel.y = (pixel.y + 1) % resolution.y;
+    }
+};
+
+// Single-threaded nanoseconds per dimension over `packets` packets (PacketWalk)
+// of paths of `depth` vertices, in a `resolution` image with `spp` samples each.
 double nanosecondsPerDimension(const std::string& sampler, int spp, Vec2i resolution, int depth,
                                int packets);
 

@@ -134,8 +134,7 @@ class GlobalSobolSamplerT {
     const SobolNibbleTable* nibbleTables_;
     std::array<uint32_t, kSobolNibbleDimensions> shifts_{};  // sobol-xor's, by dimension
     std::shared_ptr<const SobolImageMapping> mapping_;
-    // The renderer's camera-ray packet width (scene/embree_accel.h kPacketWidth).
-    static constexpr size_t kRecentIndices = 8;
+    static constexpr size_t kRecentIndices = kCameraPacketSamples;
     Vec2i pixel_{-1, -1};
     int index_ = -1;
     uint64_t sobolIndex_ = 0;
