@@ -20,6 +20,28 @@ double medianOf(const nlohmann::json& values) {
     return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
+// The frame's time split: Embree's part is the frame's rays at the best raw
+// rate, the sampler's its dimensions at the cost model's rate on two threads,
+// and the three parts make up the frame's time.
+void expectTimeSplitAddsUp(const nlohmann::json& scene) {
+    const auto& limit = scene["ray_limit"];
+    double best = 0;
+    for (const auto& [mode, rate] : limit["raw_rays_per_second"].items())
+        best = std::max(best, rate.get<double>());
+    EXPECT_EQ(limit["best_raw_rays_per_second"].get<double>(), best);
+    const auto& split = scene["time_split"];
+    EXPECT_DOUBLE_EQ(split["embree_seconds"].get<double>(), scene["rays"].get<double>() / best);
+    // A path of the Cornell box draws its two pixel dimensions and more.
+    EXPECT_GT(split["dimensions"].get<double>(), 2.0 * scene["paths"].get<double>());
+    EXPECT_GT(split["sampler_ns_per_dimension"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(split["sampler_seconds"].get<double>(),
+                     split["sampler_ns_per_dimension"].get<double>() * 1e-9 *
+                         split["dimensions"].get<double>() / 2);
+    EXPECT_NEAR(split["embree_seconds"].get<double>() + split["sampler_seconds"].get<double>() +
+                    split["rest_seconds"].get<double>(),
+                scene["seconds"].get<double>(), 1e-12);
+}
+
 TEST(BenchCli, ReportsTheMedianOfItsRuns) {
     const auto dir = testing::scratchDirectory("bench");
     for (int runs : {3, 4}) {
@@ -47,6 +69,7 @@ TEST(BenchCli, ReportsTheMedianOfItsRuns) {
         EXPECT_EQ(scaling["efficiency"].get<double>(), medianOf(scaling["efficiency_runs"]));
         for (size_t i = 0; i < size_t(runs); ++i)
             EXPECT_GT(scaling["efficiency_runs"][i].get<double>(), 0.0);
+        expectTimeSplitAddsUp(scene);
     }
     std::filesystem::remove_all(dir);
 }

@@ -2,7 +2,8 @@
 // workload (512×512, max depth 8, 64 spp, independent sampler; the median of
 // --runs frames), and where the time goes: the ray-tracing limit (the same
 // frame's rays replayed through Embree alone), thread scaling, memory per
-// million triangles and, with --samplers, each sampler's share of a frame.
+// million triangles, the frame's time split between Embree, the sampler and
+// the rest and, with --samplers, each sampler's share of a frame.
 #include <sys/resource.h>
 #include <tbb/info.h>
 
@@ -86,8 +87,32 @@ nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double render
     }
     const double efficiency = rendererRaysPerSecond / best;
     say(o, "  efficiency (renderer rays/s / best raw)  %.2f\n", efficiency);
-    return {
-        {"recorded_rays", rays.size()}, {"raw_rays_per_second", modes}, {"efficiency", efficiency}};
+    return {{"recorded_rays", rays.size()},
+            {"raw_rays_per_second", modes},
+            {"best_raw_rays_per_second", best},
+            {"efficiency", efficiency}};
+}
+
+// Where the frame's wall time goes: Embree (the frame's rays at the best raw
+// rate, on as many threads), the sampler (the cost model's ns per dimension ×
+// the dimensions the frame drew, spread over the threads) and what remains —
+// shading, light sampling, the film and the tiles' bookkeeping.
+nlohmann::json timeSplit(const RenderStats& st, double seconds, double bestRaw,
+                         const BenchOptions& o) {
+    const double embree = double(st.rays + st.shadowRays) / bestRaw;
+    const double ns = nanosecondsPerDimension("independent", o.spp, {o.size, o.size}, 4, 25000);
+    const double sampler = ns * 1e-9 * double(st.dimensions) / o.threadCount();
+    const double rest = seconds - embree - sampler;
+    say(o,
+        "  time split: embree %.3f s (%.0f%%), sampler %.3f s (%.0f%%), shading, lights and "
+        "film %.3f s (%.0f%%)\n",
+        embree, 100 * embree / seconds, sampler, 100 * sampler / seconds, rest,
+        100 * rest / seconds);
+    return {{"embree_seconds", embree},
+            {"sampler_seconds", sampler},
+            {"sampler_ns_per_dimension", ns},
+            {"dimensions", st.dimensions},
+            {"rest_seconds", rest}};
 }
 
 // The scene's frame `runs` times. With scaling, each frame on all threads is
@@ -129,6 +154,8 @@ nlohmann::json benchScene(const std::string& name, RenderScene& scene, const Ben
                         {"paths_per_second", double(st.paths) / time},
                         {"rays_per_second", raysPerSecond(st, time)}};
     r["ray_limit"] = rayLimit(scene, o, raysPerSecond(st, time));
+    r["time_split"] =
+        timeSplit(st, time, r["ray_limit"]["best_raw_rays_per_second"].get<double>(), o);
     if (scaling) {
         const double efficiency = median(scalings);
         say(o, "  1 thread %.3f s; scaling to %d threads: %.1f%% efficient (median of %d pairs)\n",
