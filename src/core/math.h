@@ -57,7 +57,8 @@ inline float length(Vec3f a) { return std::sqrt(dot(a, a)); }
 inline Vec3f normalize(Vec3f a) { return a / length(a); }
 constexpr float maxComponent(Vec3f a) { return std::max(a.x, std::max(a.y, a.z)); }
 constexpr float luminance(Vec3f c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-constexpr bool isBlack(Vec3f c) { return c.x == 0 && c.y == 0 && c.z == 0; }
+// Without short-circuits: one branch on the result instead of one per component.
+constexpr bool isBlack(Vec3f c) { return (c.x == 0) & (c.y == 0) & (c.z == 0); }
 inline bool isFinite(Vec3f c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
