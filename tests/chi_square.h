@@ -27,8 +27,7 @@ struct ChiSquareResult {
 // so every bin has the same solid angle.
 inline ChiSquareResult chiSquareTest(const std::function<std::optional<Vec3f>(int)>& sample,
                                      const std::function<double(Vec3f)>& pdf, int sampleCount,
-                                     int cosBins = 16, int phiBins = 32,
-                                     int sub = 40) {
+                                     int cosBins = 16, int phiBins = 32, int sub = 40) {
     auto binOf = [&](Vec3f w) {
         const double c = std::clamp(double(w.z), -1.0, 1.0);
         double phi = std::atan2(double(w.y), double(w.x));

@@ -40,8 +40,8 @@ inline std::filesystem::path scratchDirectory(const std::string& name) {
 // `pathlab ARGS`, with stdout and stderr captured through files in `dir`.
 inline CliResult runPathlab(const std::string& args, const std::filesystem::path& dir) {
     const auto out = dir / "cli-stdout.txt", err = dir / "cli-stderr.txt";
-    const std::string cmd = std::string(PATHLAB_BINARY) + " " + args + " >" + out.string() +
-                            " 2>" + err.string() + " </dev/null";
+    const std::string cmd = std::string(PATHLAB_BINARY) + " " + args + " >" + out.string() + " 2>" +
+                            err.string() + " </dev/null";
     const int status = std::system(cmd.c_str());
     CliResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

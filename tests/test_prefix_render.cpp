@@ -41,9 +41,15 @@ bool samplesIndependentOfSpp(const std::string& name, int fewer, int more) {
             for (int i = 0; i < fewer; ++i)
                 for (int d = 0; d < 24; d += 2) {
                     const Vec2f u = std::visit(
-                        [&](auto& s) { return sampleDimensions(s, Vec2i{x, y}, i, d, d + 1); }, a);
+                        [&](auto& s) {
+                            return sampleDimensions(s, Vec2i{x, y}, i, d, d + 1);
+                        },
+                        a);
                     const Vec2f v = std::visit(
-                        [&](auto& s) { return sampleDimensions(s, Vec2i{x, y}, i, d, d + 1); }, b);
+                        [&](auto& s) {
+                            return sampleDimensions(s, Vec2i{x, y}, i, d, d + 1);
+                        },
+                        b);
                     if (u.x != v.x || u.y != v.y) return false;
                 }
     return true;
@@ -52,8 +58,8 @@ bool samplesIndependentOfSpp(const std::string& name, int fewer, int more) {
 TEST(PrefixRender, ProgressiveFlagMatchesWhatTheSamplersDo) {
     for (const SamplerInfo& info : samplerInfos()) {
         // 4 of 4 against 4 of 64 (even log2), 2 of 2 against 2 of 8 (odd).
-        const bool same = samplesIndependentOfSpp(info.name, 4, 64) &&
-                          samplesIndependentOfSpp(info.name, 2, 8);
+        const bool same =
+            samplesIndependentOfSpp(info.name, 4, 64) && samplesIndependentOfSpp(info.name, 2, 8);
         EXPECT_EQ(same, info.progressive) << info.name;
     }
 }

@@ -49,8 +49,8 @@ SceneDescription litPlane() {
     plane.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     plane.indices = {0, 1, 2, 0, 2, 3};
     Mesh light;
-    light.positions = {{1.5f, -0.5f, 1.5f}, {1.5f, 0.5f, 1.5f}, {2.5f, 0.5f, 1.5f},
-                       {2.5f, -0.5f, 1.5f}};
+    light.positions = {
+        {1.5f, -0.5f, 1.5f}, {1.5f, 0.5f, 1.5f}, {2.5f, 0.5f, 1.5f}, {2.5f, -0.5f, 1.5f}};
     light.indices = {0, 1, 2, 0, 2, 3};
     light.emission = Vec3f(5.0f);
     s.meshes = {plane, light};

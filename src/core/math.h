@@ -43,26 +43,52 @@ struct Vec3f {
     }
 };
 
-constexpr Vec3f operator+(Vec3f a, Vec3f b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3f operator-(Vec3f a, Vec3f b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-constexpr Vec3f operator*(Vec3f a, Vec3f b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-constexpr Vec3f operator*(Vec3f a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3f operator*(float s, Vec3f a) { return a * s; }
-constexpr Vec3f operator/(Vec3f a, float s) { return a * (1.0f / s); }
-constexpr float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3f operator+(Vec3f a, Vec3f b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3f operator-(Vec3f a, Vec3f b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3f operator*(Vec3f a, Vec3f b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+constexpr Vec3f operator*(Vec3f a, float s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3f operator*(float s, Vec3f a) {
+    return a * s;
+}
+constexpr Vec3f operator/(Vec3f a, float s) {
+    return a * (1.0f / s);
+}
+constexpr float dot(Vec3f a, Vec3f b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3f cross(Vec3f a, Vec3f b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(Vec3f a) { return std::sqrt(dot(a, a)); }
-inline Vec3f normalize(Vec3f a) { return a / length(a); }
-constexpr float maxComponent(Vec3f a) { return std::max(a.x, std::max(a.y, a.z)); }
-constexpr float luminance(Vec3f c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float length(Vec3f a) {
+    return std::sqrt(dot(a, a));
+}
+inline Vec3f normalize(Vec3f a) {
+    return a / length(a);
+}
+constexpr float maxComponent(Vec3f a) {
+    return std::max(a.x, std::max(a.y, a.z));
+}
+constexpr float luminance(Vec3f c) {
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 // Without short-circuits: one branch on the result instead of one per component.
-constexpr bool isBlack(Vec3f c) { return (c.x == 0) & (c.y == 0) & (c.z == 0); }
+constexpr bool isBlack(Vec3f c) {
+    return (c.x == 0) & (c.y == 0) & (c.z == 0);
+}
 inline bool isFinite(Vec3f c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
-constexpr Vec3f lerp(float t, Vec3f a, Vec3f b) { return a * (1 - t) + b * t; }
+constexpr Vec3f lerp(float t, Vec3f a, Vec3f b) {
+    return a * (1 - t) + b * t;
+}
 
 // An orthonormal basis around a unit normal (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited"): branchless and free of the singularity of
@@ -82,10 +108,18 @@ struct Frame {
 };
 
 // Local shading-space helpers: the normal is +z.
-inline float cosTheta(Vec3f w) { return w.z; }
-inline float absCosTheta(Vec3f w) { return std::abs(w.z); }
-inline bool sameHemisphere(Vec3f a, Vec3f b) { return a.z * b.z > 0; }
+inline float cosTheta(Vec3f w) {
+    return w.z;
+}
+inline float absCosTheta(Vec3f w) {
+    return std::abs(w.z);
+}
+inline bool sameHemisphere(Vec3f a, Vec3f b) {
+    return a.z * b.z > 0;
+}
 
-inline Vec3f reflect(Vec3f wo, Vec3f n) { return -wo + n * (2 * dot(wo, n)); }
+inline Vec3f reflect(Vec3f wo, Vec3f n) {
+    return -wo + n * (2 * dot(wo, n));
+}
 
 }  // namespace pathlab
