@@ -63,6 +63,13 @@ double raysPerSecond(const RenderStats& st, double seconds) {
     return double(st.rays + st.shadowRays) / seconds;
 }
 
+// The cost model's single-threaded ns per dimension for `sampler` at the
+// bench's image size and spp (sampling/sampler_cost.h: paths of depth 4,
+// 25 000 packets).
+double costModelNanoseconds(const std::string& sampler, const BenchOptions& o) {
+    return nanosecondsPerDimension(sampler, o.spp, {o.size, o.size}, 4, 25000);
+}
+
 // The frame's rays at 1 spp (same distribution as any spp) replayed through
 // Embree alone, in each query mode, with the renderer's thread count.
 nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double rendererRaysPerSecond) {
@@ -100,7 +107,7 @@ nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double render
 nlohmann::json timeSplit(const RenderStats& st, double seconds, double bestRaw,
                          const BenchOptions& o) {
     const double embree = double(st.rays + st.shadowRays) / bestRaw;
-    const double ns = nanosecondsPerDimension("independent", o.spp, {o.size, o.size}, 4, 25000);
+    const double ns = costModelNanoseconds("independent", o);
     const double sampler = ns * 1e-9 * double(st.dimensions) / o.threadCount();
     const double rest = seconds - embree - sampler;
     say(o,
@@ -267,7 +274,7 @@ nlohmann::json samplerShares(const BenchOptions& o) {
     nlohmann::json rows = nlohmann::json::array();
     for (size_t i = 0; i < count; ++i) {
         const double frame = median(seconds[i]), ratio = median(ratios[i]);
-        const double ns = nanosecondsPerDimension(infos[i].name, o.spp, {o.size, o.size}, 4, 25000);
+        const double ns = costModelNanoseconds(infos[i].name, o);
         // Dimensions are drawn on every thread at once.
         const double samplerSeconds = ns * 1e-9 * double(dimensions[i]) / o.threadCount();
         rows.push_back({{"sampler", infos[i].name},
