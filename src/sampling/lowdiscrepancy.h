@@ -35,6 +35,18 @@ const int* primeTable();                      // kPrimeTableSize entries
     return v;
 }
 
+// Two 32-bit reversals at once: the low half of the result is lo's reversal,
+// the high half hi's — one 64-bit reversal (a byte swap and three mask-and-shift
+// steps) instead of two 32-bit ones, for samplers that draw two dimensions.
+[[gnu::always_inline]] constexpr uint64_t reverseBits32Pair(uint32_t lo, uint32_t hi) {
+    uint64_t v = uint64_t(lo) << 32 | hi;
+    v = __builtin_bswap64(v);
+    v = ((v & 0x0f0f0f0f0f0f0f0fULL) << 4) | ((v & 0xf0f0f0f0f0f0f0f0ULL) >> 4);
+    v = ((v & 0x3333333333333333ULL) << 2) | ((v & 0xccccccccccccccccULL) >> 2);
+    v = ((v & 0x5555555555555555ULL) << 1) | ((v & 0xaaaaaaaaaaaaaaaaULL) >> 1);
+    return v;
+}
+
 // A 32-bit fixed-point fraction (value · 2^-32) as a float in [0, 1). The low
 // 8 bits are truncated rather than rounded, so the result is exact, never 1,
 // and stays inside every dyadic interval the fixed-point value lies in —

@@ -158,7 +158,10 @@ class OwenSobolSampler {
         // forget the dimensions' seeds of the pixel before.
         if (p.x != pixel_.x || p.y != pixel_.y)
             pixel_ = p, pixelHash_ = pixelHash(p, seed_), seeds1D_.clear(), seeds2D_.clear();
-        index_ = static_cast<uint32_t>(index);
+        // The index's reversal, which the index scramble starts from, once
+        // per sample rather than once per draw.
+        if (static_cast<uint32_t>(index) != index_)
+            index_ = static_cast<uint32_t>(index), reversedIndex_ = reverseBits32(index_);
         dimension_ = dim;
     }
     // By definition (Burley 2020): the index shuffled by a nested scramble of
@@ -167,21 +170,23 @@ class OwenSobolSampler {
     // the Laine–Karras permutation), C_0 = R and C_1 = R∘Z (Z the superset
     // transform of sobolSecondDimension), the reversals that meet cancel:
     // i = R(L_h(R(index))), x = R(L_sx(i)), y = R(L_sy(Z(i))) — four
-    // reversals per pair instead of eight, the same bits.
+    // reversals per pair instead of eight, the same bits; R(index) is kept
+    // per sample, and the last two are one 64-bit reversal (reverseBits32Pair).
     // The seeds depend on the pixel and the dimension only, so they are kept
     // for the pixel's other samples (PixelDimensionCache).
     float get1D() {
         const Seeds k = seeds(dimension_++, 0x31, seeds1D_);
-        const uint32_t i = owenScramble(index_, k.index);
+        const uint32_t i = reverseBits32(laineKarrasPermutation(reversedIndex_, k.index));
         return fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, foldSeed(k.values))));
     }
     Vec2f get2D() {
         const Seeds k = seeds(dimension_, 0x32, seeds2D_);
         dimension_ += 2;
-        const uint32_t i = owenScramble(index_, k.index);
-        return {fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, uint32_t(k.values)))),
-                fixedPointToFloat(reverseBits32(laineKarrasPermutation(
-                    uint32_t(sobolSupersetTransform(i)), uint32_t(k.values >> 32))))};
+        const uint32_t i = reverseBits32(laineKarrasPermutation(reversedIndex_, k.index));
+        const uint64_t xy = reverseBits32Pair(
+            laineKarrasPermutation(i, uint32_t(k.values)),
+            laineKarrasPermutation(uint32_t(sobolSupersetTransform(i)), uint32_t(k.values >> 32)));
+        return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
     }
     // The definitions the draws above must equal (for tests): dimension `dim`
     // of sample `index` for a pixel whose hash is `pixelHash`.
@@ -222,6 +227,7 @@ class OwenSobolSampler {
     Vec2i pixel_{-1, -1};
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
+    uint32_t reversedIndex_ = 0;  // reverseBits32(index_)
     int dimension_ = 0;
     PixelDimensionCache<Seeds> seeds1D_, seeds2D_;
 };
@@ -293,9 +299,10 @@ class ZSobolSampler {
                              reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
                              reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
         if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
-        return {fixedPointToFloat(reverseBits32(
-                    laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]))),
-                fixedPointToFloat(reverseBits32(laineKarrasPermutation(reversed1, c.seeds2D[1])))};
+        const uint64_t xy =
+            reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
+                              laineKarrasPermutation(reversed1, c.seeds2D[1]));
+        return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
     }
     Vec2f getPixel2D() { return get2D(); }
 
@@ -346,20 +353,24 @@ class ZSobolSampler {
     uint64_t lowDigits(int d, uint64_t salt) {
         const int odd = log2Spp_ & 1;
         if (lowNodes_ == 0) return lowDigitsUncached(salt);
-        uint8_t* node = lowPermutations_.data() + size_t(d) * size_t(lowNodes_);
+        // The tree is stored level after level, each node's children 4n + 1 … 4n + 4
+        // (a 4-ary heap): the node at a level is found from the one above it
+        // and the digit just read, without the level's offset.
+        uint8_t* tree = lowPermutations_.data() + size_t(d) * size_t(lowNodes_);
         const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
         uint64_t index = 0;
-        size_t level = 0;  // the first node of the current level
-        for (int shift = log2Spp_ - 2, j = 0; shift >= odd; shift -= 2, ++j) {
-            uint8_t& perm = node[level + (sample >> (shift + 2))];
+        size_t node = 0;
+        for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2) {
+            uint8_t& perm = tree[node];
             if (perm == kUnset) perm = zsobol::digitPermutation(mortonIndex_ >> (shift + 2), salt);
-            index |= uint64_t((perm >> (2 * ((sample >> shift) & 3))) & 3) << shift;
-            level += size_t(1) << (2 * j);
+            const auto digit = unsigned(sample >> shift) & 3;
+            index = index << 2 | ((perm >> (2 * digit)) & 3);
+            node = 4 * node + 1 + digit;
         }
         if (odd) {
-            uint8_t& flip = node[level + (sample >> 1)];
+            uint8_t& flip = tree[node];
             if (flip == kUnset) flip = uint8_t(mixBits((mortonIndex_ >> 1) ^ salt) & 1);
-            index |= (sample & 1) ^ flip;
+            index = index << 1 | ((sample & 1) ^ flip);
         }
         return index;
     }
