@@ -74,5 +74,48 @@ TEST(BenchCli, ReportsTheMedianOfItsRuns) {
     std::filesystem::remove_all(dir);
 }
 
+// --samplers: every sampler's frame, independent's included, is compared with
+// the mean of the independent frames just before and just after it; a round's
+// consecutive comparisons share that frame, so one round is a chain
+// I S I S … I over all samplers in its rotated order.
+TEST(BenchCli, ComparesEachSamplerWithTheIndependentFramesAroundIt) {
+    const auto dir = testing::scratchDirectory("bench-samplers");
+    const int rounds = 2;
+    const auto r = runPathlab(
+        "bench --json --samplers --no-scaling --scene cornell-box --size 8 --spp 1 --threads 2 "
+        "--runs 1 --rounds " +
+            std::to_string(rounds),
+        dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = nlohmann::json::parse(r.out)["samplers"];
+    ASSERT_GE(rows.size(), 2u);
+    const size_t count = rows.size();
+    for (size_t i = 0; i < count; ++i) {
+        const auto& row = rows[i];
+        SCOPED_TRACE(row["sampler"].get<std::string>());
+        ASSERT_EQ(row["cpu_seconds_runs"].size(), size_t(rounds));
+        ASSERT_EQ(row["independent_before_runs"].size(), size_t(rounds));
+        ASSERT_EQ(row["independent_after_runs"].size(), size_t(rounds));
+        std::vector<double> ratios;
+        for (int k = 0; k < rounds; ++k) {
+            const double before = row["independent_before_runs"][k].get<double>();
+            const double after = row["independent_after_runs"][k].get<double>();
+            EXPECT_GT(before, 0.0);
+            EXPECT_GT(after, 0.0);
+            ratios.push_back(row["cpu_seconds_runs"][k].get<double>() / ((before + after) / 2));
+        }
+        EXPECT_DOUBLE_EQ(row["vs_independent"].get<double>(), medianOf(ratios) - 1);
+    }
+    // Round k starts at sampler k (registry order): sampler i's frame after
+    // is sampler i+1's frame before, except where the round's chain ends.
+    for (int k = 0; k < rounds; ++k)
+        for (size_t step = 0; step + 1 < count; ++step) {
+            const size_t i = (step + size_t(k)) % count, next = (i + 1) % count;
+            EXPECT_EQ(rows[i]["independent_after_runs"][k],
+                      rows[next]["independent_before_runs"][k]);
+        }
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -248,32 +248,42 @@ TimedFrame timedFrame(const RenderScene& scene, const BenchOptions& o, const std
 // Each sampler's frame on the Cornell box next to independent's, and the part
 // of it the sampler itself explains: ns per dimension × dimensions drawn.
 // A shared machine's speed drifts by more than the differences measured here,
-// so each sampler's frame is paired with an independent frame rendered just
-// before it, both timed in CPU seconds (which another process's load moves
-// less than wall time); a round does this for every sampler (each round
-// starting one sampler further on), and the median over rounds of the ratio
-// within each pair is reported.
+// so frames are timed in CPU seconds (which another process's load moves less
+// than wall time) and every sampler's frame is rendered between two
+// independent frames, its ratio taken to their mean: a drift that is linear
+// over the three frames cancels, and so does any cost of coming first or
+// second in a pair. Consecutive sandwiches share their independent frame. A
+// round does this for every sampler, `independent` included — its ratio is
+// the comparison's noise floor — each round starting one sampler further on;
+// the median over rounds is reported.
 nlohmann::json samplerShares(const BenchOptions& o) {
     const RenderScene scene(loadScene("cornell-box"));
     const std::vector<SamplerInfo>& infos = samplerInfos();
     const size_t count = infos.size();
-    std::vector<std::vector<double>> seconds(count), ratios(count);
+    std::vector<std::vector<double>> seconds(count), cpu(count), before(count), after(count);
     std::vector<uint64_t> dimensions(count);
     say(o, "sampler shares, cornell-box %dx%d %d spp, median of %d rounds:\n", o.size, o.size,
         o.spp, o.rounds);
-    for (int round = 0; round < o.rounds; ++round)
+    for (int round = 0; round < o.rounds; ++round) {
+        double previous = timedFrame(scene, o, "independent").cpu;
         for (size_t k = 0; k < count; ++k) {
             const size_t i = (k + size_t(round)) % count;
-            const TimedFrame base = timedFrame(scene, o, "independent");
-            const TimedFrame frame =
-                infos[i].name == "independent" ? base : timedFrame(scene, o, infos[i].name);
+            const TimedFrame frame = timedFrame(scene, o, infos[i].name);
+            const double next = timedFrame(scene, o, "independent").cpu;
             seconds[i].push_back(frame.wall);
-            ratios[i].push_back(frame.cpu / base.cpu);
+            cpu[i].push_back(frame.cpu);
+            before[i].push_back(previous);
+            after[i].push_back(next);
             dimensions[i] = frame.dimensions;
+            previous = next;
         }
+    }
     nlohmann::json rows = nlohmann::json::array();
     for (size_t i = 0; i < count; ++i) {
-        const double frame = median(seconds[i]), ratio = median(ratios[i]);
+        std::vector<double> ratios;
+        for (size_t r = 0; r < cpu[i].size(); ++r)
+            ratios.push_back(cpu[i][r] / (0.5 * (before[i][r] + after[i][r])));
+        const double frame = median(seconds[i]), ratio = median(ratios);
         const double ns = costModelNanoseconds(infos[i].name, o);
         // Dimensions are drawn on every thread at once.
         const double samplerSeconds = ns * 1e-9 * double(dimensions[i]) / o.threadCount();
@@ -282,9 +292,13 @@ nlohmann::json samplerShares(const BenchOptions& o) {
                         {"dimensions", dimensions[i]},
                         {"ns_per_dimension", ns},
                         {"sampler_share", samplerSeconds / frame},
+                        {"cpu_seconds_runs", cpu[i]},
+                        {"independent_before_runs", before[i]},
+                        {"independent_after_runs", after[i]},
                         {"vs_independent", ratio - 1}});
-        say(o, "  %-12s %8.3f s  %5.1f ns/dim  share %5.1f%%  vs independent %+6.1f%%\n",
-            infos[i].name.c_str(), frame, ns, 100 * samplerSeconds / frame, 100 * (ratio - 1));
+        say(o, "  %-12s %8.3f s  %5.1f ns/dim  share %5.1f%%  vs independent %+6.1f%%%s\n",
+            infos[i].name.c_str(), frame, ns, 100 * samplerSeconds / frame, 100 * (ratio - 1),
+            infos[i].name == "independent" ? "  (noise floor)" : "");
     }
     return rows;
 }
