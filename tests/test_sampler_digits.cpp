@@ -230,6 +230,50 @@ TEST(HaltonDigits, OwenPermutesEachDigitByItsOwnNode) {
     }
 }
 
+// One draw of dimension d at the sampler's current pixel sample, checked
+// against the digit-by-digit reference index.
+void expectZSobolDrawMatchesReference(ZSobolSampler& s, int d, uint64_t seed, bool twoD) {
+    const uint32_t* matrices = sobolMatrices();
+    const uint64_t reference = s.referenceSampleIndex(d);
+    if (!twoD) {
+        const uint32_t seed1 = foldSeed(hashValues(d, seed, 0x5a31u));
+        ASSERT_EQ(bits(s.get1D()),
+                  bits(fixedPointToFloat(owenScramble(sobolBits(matrices, reference, 0), seed1))));
+        return;
+    }
+    const uint64_t seeds = hashValues(d, seed, 0x5a32u);
+    const Vec2f u = s.get2D();
+    ASSERT_EQ(
+        bits(u.x),
+        bits(fixedPointToFloat(owenScramble(sobolBits(matrices, reference, 0), uint32_t(seeds)))));
+    ASSERT_EQ(bits(u.y), bits(fixedPointToFloat(owenScramble(sobolBits(matrices, reference, 1),
+                                                             uint32_t(seeds >> 32)))));
+}
+
+// The renderer's order: a pixel's samples one after another, each drawing its
+// dimensions in order, and some paths ending early — the draws that reuse the
+// previous draw's node of the last tree level must give the reference values.
+TEST(ZSobolDigits, DrawsInTheRenderersOrderMatchTheReference) {
+    for (int spp : {1, 2, 3, 4, 6, 8, 32, 64, 128, 512})
+        for (uint64_t seed : {0, 11}) {
+            ZSobolSampler s(SamplerConfig{spp, seed, {64, 64}});
+            Pcg32 rng(uint64_t(spp) * 7 + seed, 3);
+            for (Vec2i pixel : {Vec2i{0, 0}, Vec2i{5, 9}, Vec2i{0, 0}, Vec2i{63, 63}})
+                for (int index = 0; index < spp; ++index) {
+                    // A path of up to 12 dimensions (from 0), ending early at random.
+                    const int dims = 2 + int(rng.nextUInt(11));
+                    for (int d = 0; d < dims;) {
+                        const bool twoD = d + 1 < dims && rng.nextUInt(2);
+                        s.startPixelSample(pixel, index, d);
+                        SCOPED_TRACE(testing::Message()
+                                     << "spp " << spp << " index " << index << " dim " << d);
+                        expectZSobolDrawMatchesReference(s, d, seed, twoD);
+                        d += twoD ? 2 : 1;
+                    }
+                }
+        }
+}
+
 TEST(ZSobolDigits, CachedIndexAndDrawsMatchTheDigitByDigitReference) {
     const uint32_t* matrices = sobolMatrices();
     for (int spp : {1, 2, 3, 4, 8, 16, 32, 48, 64, 128, 256, 1024, 1 << 20, (1 << 25) + 3})

@@ -271,10 +271,10 @@ class ZSobolSampler {
             return fixedPointToFloat(
                 owenScramble(sobolBits(matrices_, referenceSampleIndex(d), 0), seed));
         }
-        const CachedDimension& c = cached(d);
+        CachedDimension& c = cached(d);
         // Sobol' dimension 0 is the bit reversal, which owenScramble undoes:
         // owenScramble(reverse(i), s) = reverse(laineKarras(i, s)).
-        const uint32_t index = uint32_t(c.highIndex | lowDigits(d, c.salt));
+        const uint32_t index = uint32_t(c.highIndex | lowDigits(d, c));
         return fixedPointToFloat(reverseBits32(laineKarrasPermutation(index, c.seed1D)));
     }
     Vec2f get2D() {
@@ -288,8 +288,8 @@ class ZSobolSampler {
                 fixedPointToFloat(
                     owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
         }
-        const CachedDimension& c = cached(d);
-        const uint64_t low = lowDigits(d, c.salt);
+        CachedDimension& c = cached(d);
+        const uint64_t low = lowDigits(d, c);
         // Sobol' dimension 1 is linear over GF(2) and the high and low index
         // bits are disjoint, so its value is the cached high part XOR the
         // low part; both are kept bit-reversed, as owenScramble wants them.
@@ -314,8 +314,8 @@ class ZSobolSampler {
     // The value the draws use.
     uint64_t sampleIndex(int dimension) {
         if (dimension >= kCachedDimensions) return referenceSampleIndex(dimension);
-        const CachedDimension& c = cached(dimension);
-        return c.highIndex | lowDigits(dimension, c.salt);
+        CachedDimension& c = cached(dimension);
+        return c.highIndex | lowDigits(dimension, c);
     }
 
   private:
@@ -330,11 +330,18 @@ class ZSobolSampler {
         // (bit-reversed) Sobol' dimension 1 of them.
         uint64_t highIndex = 0;
         uint32_t reversedSobol1High = 0;
+        // The last draw's node of the tree's last level (see lowDigits): its
+        // parent's number (~0: none yet in this pixel), the permuted digits
+        // above it and its permutation (or flip bit).
+        uint64_t lastParent = ~uint64_t(0);
+        uint64_t lastPrefix = 0;
+        uint8_t lastPermutation = 0;
     };
-    const CachedDimension& cached(int d) {
+    CachedDimension& cached(int d) {
         CachedDimension& c = cache_[size_t(d)];
         if (!((cacheValid_ >> d) & 1)) {
             fillHighDigits(c);
+            c.lastParent = ~uint64_t(0);
             if (lowNodes_ > 0)
                 std::fill_n(lowPermutations_.begin() + d * lowNodes_, lowNodes_, kUnset);
             cacheValid_ |= uint64_t(1) << d;
@@ -350,29 +357,50 @@ class ZSobolSampler {
     // hashed when a sample first reaches it and kept in lowPermutations_ for
     // the pixel's other samples — at 256 spp 85 hashes per dimension and pixel
     // instead of four per draw.
-    uint64_t lowDigits(int d, uint64_t salt) {
+    //
+    // The renderer draws a dimension for a pixel's samples in order, so most
+    // draws fall into the same node of the last level as the draw before
+    // (samples 4k … 4k + 3 share one, or 2k, 2k + 1 for an odd log2 spp): that
+    // node's permutation and the digits above it are kept per dimension, and
+    // such a draw reads one digit instead of walking the tree from the root.
+    uint64_t lowDigits(int d, CachedDimension& c) {
         const int odd = log2Spp_ & 1;
-        if (lowNodes_ == 0) return lowDigitsUncached(salt);
+        if (lowNodes_ == 0) return lowDigitsUncached(c.salt);
+        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
+        const int lastBits = odd ? 1 : 2;
+        if ((sample >> lastBits) == c.lastParent)
+            return c.lastPrefix | lastLevelDigits(c.lastPermutation, sample, odd);
         // The tree is stored level after level, each node's children 4n + 1 … 4n + 4
         // (a 4-ary heap): the node at a level is found from the one above it
         // and the digit just read, without the level's offset.
         uint8_t* tree = lowPermutations_.data() + size_t(d) * size_t(lowNodes_);
-        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
         uint64_t index = 0;
         size_t node = 0;
+        uint8_t last = 0;
         for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2) {
             uint8_t& perm = tree[node];
-            if (perm == kUnset) perm = zsobol::digitPermutation(mortonIndex_ >> (shift + 2), salt);
+            if (perm == kUnset)
+                perm = zsobol::digitPermutation(mortonIndex_ >> (shift + 2), c.salt);
             const auto digit = unsigned(sample >> shift) & 3;
             index = index << 2 | ((perm >> (2 * digit)) & 3);
             node = 4 * node + 1 + digit;
+            last = perm;
         }
         if (odd) {
             uint8_t& flip = tree[node];
-            if (flip == kUnset) flip = uint8_t(mixBits((mortonIndex_ >> 1) ^ salt) & 1);
+            if (flip == kUnset) flip = uint8_t(mixBits((mortonIndex_ >> 1) ^ c.salt) & 1);
             index = index << 1 | ((sample & 1) ^ flip);
+            last = flip;
         }
+        c.lastParent = sample >> lastBits;
+        c.lastPrefix = index >> lastBits << lastBits;
+        c.lastPermutation = last;
         return index;
+    }
+    // The last level's permuted digit of `sample`: its two low bits through
+    // the permutation, or (odd log2 spp) its low bit XOR the flip.
+    static uint64_t lastLevelDigits(uint8_t permutation, uint64_t sample, int odd) {
+        return odd ? (sample & 1) ^ permutation : (permutation >> (2 * (sample & 3))) & 3;
     }
     uint64_t lowDigitsUncached(uint64_t salt) const {
         const int odd = log2Spp_ & 1;
