@@ -239,7 +239,10 @@ TEST(SamplerValues, IndependentIsPcg32AtTheSampleAndDimensionOffset) {
     std::mt19937 pick(3);
     for (int call = 0; call < 2000; ++call) {
         const Vec2i p{int(pick() % 3), int(pick() % 2)};
-        const int index = int(pick() % 6), dim = int(pick() % 40);
+        // Every fifth call near the end of the cursor's table of jumps (1024
+        // draws), so that draws on both sides of it are checked.
+        const int index = int(pick() % 6);
+        const int dim = call % 5 == 0 ? 1010 + int(pick() % 20) : int(pick() % 40);
         sampler.startPixelSample(p, index, dim);
         Pcg32 plain(hashValues(p.x, p.y, seed), 0);
         plain.advance(int64_t(index) * IndependentSampler::kStreamStride + dim);

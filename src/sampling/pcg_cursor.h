@@ -3,11 +3,13 @@
 // index·kStride + dim of the stream picked by a hashed key (pixel, seed, …).
 //
 // Samplers restart at every path vertex, and jumping from the stream's start
-// each time costs O(log n) multiplies; the cursor instead remembers where it is
-// and steps forward when the request lies a little ahead in the same sample
-// (the usual case), and moves from one sample's block to the next with one
-// precomputed affine jump. The values are exactly those of the plain jump.
+// each time costs O(log n) multiplies; the cursor instead keeps the current
+// sample's block start, moves from one sample's block to the next with one
+// precomputed affine jump, and computes each draw from the block start with a
+// tabulated jump. The values are exactly those of the plain jump.
 #pragma once
+
+#include <array>
 
 #include "core/rng.h"
 
@@ -17,8 +19,6 @@ class PcgSampleCursor {
   public:
     // Draws reserved per sample: 2^16 is far beyond any path (7 per bounce).
     static constexpr int64_t kStride = 65536;
-    // A forward gap up to this many draws is stepped rather than jumped.
-    static constexpr int kMaxStep = 16;
 
     void seek(uint64_t key, int index, int dim) {
         if (key != key_ || !started_) {
@@ -35,29 +35,41 @@ class PcgSampleCursor {
                 sampleStart_.advance(int64_t(index) * kStride);
             }
             index_ = index;
-            rng_ = sampleStart_;
-            position_ = 0;
         }
-        if (dim >= position_ && dim - position_ <= kMaxStep) {
-            for (; position_ < dim; ++position_) rng_.nextUInt();
-        } else {
-            rng_ = sampleStart_;
-            rng_.advance(dim);
-            position_ = dim;
-        }
+        position_ = dim;
     }
+    // Draw position_ of the sample's block, from the block's start by a
+    // tabulated jump: state_d = A_d·s + inc·B_d. No draw waits for the one
+    // before it, as it would if the generator were stepped from draw to draw:
+    // that chain of 64-bit multiplies lies on the path's critical path.
     float nextFloat() {
-        ++position_;
-        return rng_.nextFloat();
+        const int64_t d = position_++;
+        if (d < kTabulatedDraws) {
+            const Pcg32::Jump& j = kDrawJumps[size_t(d)];
+            return Pcg32::toFloat(Pcg32::output(j.multiplier * sampleStart_.state() +
+                                                sampleStart_.increment() * j.offsetFactor));
+        }
+        Pcg32 far = sampleStart_;
+        far.advance(d);
+        return far.nextFloat();
     }
 
   private:
     static constexpr Pcg32::Jump kSampleJump = Pcg32::jump(kStride);
+    // The jumps to a block's first kTabulatedDraws draws (16 KB, computed at
+    // compile time).
+    static constexpr int64_t kTabulatedDraws = 1024;
+    static constexpr std::array<Pcg32::Jump, kTabulatedDraws> kDrawJumps = [] {
+        std::array<Pcg32::Jump, kTabulatedDraws> t{};
+        for (size_t d = 0; d < t.size(); ++d) t[d] = Pcg32::jump(d);
+        return t;
+    }();
+
     uint64_t key_ = 0;
     bool started_ = false;
     int index_ = -1;
-    int position_ = 0;  // draws since the current sample's start
-    Pcg32 streamStart_, sampleStart_, rng_;
+    int64_t position_ = 0;  // the next draw's offset in the current sample's block
+    Pcg32 streamStart_, sampleStart_;
 };
 
 }  // namespace pathlab
