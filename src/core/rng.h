@@ -30,16 +30,10 @@ class Pcg32 {
     uint32_t nextUInt() {
         const uint64_t old = state_;
         state_ = old * kMultiplier + inc_;
-        return output(old);
-    }
-    // The XSH-RR output of a state: what nextUInt returns when it is at it.
-    static uint32_t output(uint64_t state) {
-        const auto xorShifted = static_cast<uint32_t>(((state >> 18u) ^ state) >> 27u);
-        const auto rot = static_cast<uint32_t>(state >> 59u);
+        const auto xorShifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const auto rot = static_cast<uint32_t>(old >> 59u);
         return (xorShifted >> rot) | (xorShifted << ((~rot + 1u) & 31));
     }
-    uint64_t state() const { return state_; }
-    uint64_t increment() const { return inc_; }
 
     // Uniform in [0, bound) without modulo bias (Lemire's rejection is overkill here;
     // the classic threshold method keeps the stream position deterministic per call count).
@@ -53,9 +47,8 @@ class Pcg32 {
 
     // Uniform float in [0,1): 24 random mantissa bits... via multiply by 2^-32,
     // clamped so rounding can never produce 1.
-    float nextFloat() { return toFloat(nextUInt()); }
-    static float toFloat(uint32_t u) {
-        const float v = static_cast<float>(u) * 0x1p-32f;
+    float nextFloat() {
+        const float v = static_cast<float>(nextUInt()) * 0x1p-32f;
         return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
     }
 

@@ -44,14 +44,12 @@ class PcgSampleCursor {
     // that chain of 64-bit multiplies lies on the path's critical path.
     float nextFloat() {
         const int64_t d = position_++;
-        if (d < kTabulatedDraws) {
-            const Pcg32::Jump& j = kDrawJumps[size_t(d)];
-            return Pcg32::toFloat(Pcg32::output(j.multiplier * sampleStart_.state() +
-                                                sampleStart_.increment() * j.offsetFactor));
-        }
-        Pcg32 far = sampleStart_;
-        far.advance(d);
-        return far.nextFloat();
+        Pcg32 draw = sampleStart_;
+        if (d < kTabulatedDraws)
+            draw.advance(kDrawJumps[size_t(d)]);
+        else
+            draw.advance(d);
+        return draw.nextFloat();
     }
 
   private:
