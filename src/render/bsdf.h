@@ -30,6 +30,8 @@ class Bsdf {
     static Bsdf conductor(Vec3f eta, Vec3f k, float alpha);
 
     BsdfKind kind() const { return kind_; }
+    // A Lambertian BSDF's albedo (its reflectance R: f = R/π).
+    Vec3f albedo() const { return color_; }
     // True when every lobe is a Dirac delta: next-event estimation cannot help.
     // Inline: the integrator asks at every vertex, and the diffuse answer is
     // one comparison.

@@ -121,6 +121,8 @@ class LightSet {
         if (onlyAreaLight_) return sampleByArea(lights_[0], ref, u, 1.0f);
         return sampleChosen(ref, ns, uChoice, u);
     }
+    // The scene's only light, an area light sampled by area; null otherwise.
+    const AreaLight* onlyAreaLight() const { return onlyAreaLight_ ? &lights_[0] : nullptr; }
     // False when there is at most one light to choose: uChoice is then never read.
     bool choiceUsesSample() const { return cdf_.size() > 1; }
     // Solid-angle pdf (with choice probability) with which sample(ref, ns, …)

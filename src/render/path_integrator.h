@@ -15,6 +15,7 @@
 
 #include <limits>
 
+#include "render/diffuse_batch.h"
 #include "render/integrator_settings.h"
 #include "render/render_scene.h"
 #include "render/sampling_routines.h"
@@ -89,6 +90,31 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     return f * ls->radiance * (weight / ls->pdf);
 }
 
+// What the ray that found a vertex (or escaped: !found) adds to L: the
+// environment or the emission of the light it hit, weighted against the light
+// sample that could have reached the same point (power heuristic) — unweighted
+// for the camera ray and after a specular bounce, which no light sample
+// competes with.
+inline void addEmission(const LightSet& lights, bool found, const SurfaceInteraction& si, Vec3f dir,
+                        Vec3f beta, bool unweighted, float prevBsdfPdf, Vec3f prevPoint,
+                        Vec3f prevNormal, Vec3f& L) {
+    if (!found) {
+        const Vec3f env = lights.environment();
+        if (!isBlack(env))
+            L += beta * env *
+                 (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironment()));
+        return;
+    }
+    if (si.light >= 0) {
+        const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
+        if (!isBlack(Le))
+            L += beta * Le *
+                 (unweighted ? 1.0f
+                             : powerHeuristic(prevBsdfPdf, lights.pdfAreaLight(si.light, prevPoint,
+                                                                               prevNormal, si.p)));
+    }
+}
+
 // The radiance arriving along a path whose first segment (origin → first
 // surface, or escape when !found) has already been traced: the camera rays of
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
@@ -106,24 +132,9 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
             ++counters.rays;
             found = scene.intersect(origin, dir, &si);
         }
-        const bool unweighted = depth == 0 || specularBounce;
-        if (!found) {
-            const Vec3f env = lights.environment();
-            if (!isBlack(env))
-                L += beta * env *
-                     (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironment()));
-            break;
-        }
-        if (si.light >= 0) {
-            const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
-            if (!isBlack(Le))
-                L += beta * Le *
-                     (unweighted
-                          ? 1.0f
-                          : powerHeuristic(prevBsdfPdf, lights.pdfAreaLight(si.light, prevPoint,
-                                                                            prevNormal, si.p)));
-        }
-        if (depth == settings.maxDepth) break;
+        addEmission(lights, found, si, dir, beta, depth == 0 || specularBounce, prevBsdfPdf,
+                    prevPoint, prevNormal, L);
+        if (!found || depth == settings.maxDepth) break;
 
         VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
         const Bsdf bsdf = scene.bsdfAt(si);
@@ -157,6 +168,112 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         if (isBlack(beta)) break;
     }
     return L;
+}
+
+// estimateRadiance's start of a vertex, for one lane of estimateRadianceBatch:
+// trace the ray (after the camera's), add what it finds emitted, and say
+// whether the path goes on to shade the hit. Lambertian scenes have no
+// specular bounce: only the camera ray's emission is unweighted.
+inline bool startBatchVertex(const RenderScene& scene, int depth,
+                             const IntegratorSettings& settings, PathCounters& counters,
+                             Vec3f origin, Vec3f dir, bool& found, SurfaceInteraction& si,
+                             Vec3f beta, float prevBsdfPdf, Vec3f prevPoint, Vec3f prevNormal,
+                             Vec3f& L) {
+    if (depth > 0) {
+        ++counters.rays;
+        found = scene.intersect(origin, dir, &si);
+    }
+    addEmission(scene.lights(), found, si, dir, beta, depth == 0, prevBsdfPdf, prevPoint,
+                prevNormal, L);
+    return found && depth != settings.maxDepth;
+}
+
+inline void setBatchLane(DiffuseBatchInput& in, int k, const SurfaceInteraction& si, Vec3f dir,
+                         Vec3f albedo, Vec2f uLight, Vec2f uDirection) {
+    in.px[k] = si.p.x, in.py[k] = si.p.y, in.pz[k] = si.p.z;
+    in.nx[k] = si.ns.x, in.ny[k] = si.ns.y, in.nz[k] = si.ns.z;
+    in.gx[k] = si.ng.x, in.gy[k] = si.ng.y, in.gz[k] = si.ng.z;
+    in.dx[k] = dir.x, in.dy[k] = dir.y, in.dz[k] = dir.z;
+    in.ar[k] = albedo.x, in.ag[k] = albedo.y, in.ab[k] = albedo.z;
+    in.lightU[k] = uLight.x, in.lightV[k] = uLight.y;
+    in.dirU[k] = uDirection.x, in.dirV[k] = uDirection.y;
+}
+
+// The paths of a camera packet, traced together where every surface is
+// Lambertian and one area light is sampled by area
+// (RenderScene::batchesDiffusePaths): the same estimator as estimateRadiance,
+// bit for bit, but each bounce's arithmetic for all live paths runs as one
+// shadeDiffuseBatch. Rays are still traced one at a time, and a sampler's
+// values are pure functions of (pixel, index, dimension, seed), so the draws
+// may be made lane after lane. L[k] receives path k's radiance.
+template <Sampler S>
+void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dirs,
+                           const bool* cameraFound, const SurfaceInteraction* cameraHits, int count,
+                           S& sampler, Vec2i pixel, int firstIndex,
+                           const IntegratorSettings& settings, PathCounters& counters, Vec3f* L) {
+    static_assert(kPacketWidth <= kBatchLanes, "a camera packet fills at most one batch");
+    const LightSet& lights = scene.lights();
+    const AreaLight& light = *lights.onlyAreaLight();
+    Vec3f beta[kBatchLanes], origin[kBatchLanes], dir[kBatchLanes];
+    Vec3f prevPoint[kBatchLanes], prevNormal[kBatchLanes];
+    float prevBsdfPdf[kBatchLanes] = {};
+    bool alive[kBatchLanes] = {}, found[kBatchLanes];
+    SurfaceInteraction si[kBatchLanes];
+    for (int k = 0; k < count; ++k) {
+        L[k] = Vec3f(0.0f), beta[k] = Vec3f(1.0f), origin[k] = eye, dir[k] = dirs[k];
+        alive[k] = true, found[k] = cameraFound[k], si[k] = cameraHits[k];
+    }
+    DiffuseBatchInput in{};
+    DiffuseBatchOutput out;
+    for (int depth = 0;; ++depth) {
+        // The live paths' vertices go to consecutive slots, so that a
+        // packet whose paths have mostly ended shades one half, not two.
+        int lane[kBatchLanes], live = 0;
+        for (int k = 0; k < count; ++k) {
+            if (!alive[k]) continue;
+            alive[k] =
+                startBatchVertex(scene, depth, settings, counters, origin[k], dir[k], found[k],
+                                 si[k], beta[k], prevBsdfPdf[k], prevPoint[k], prevNormal[k], L[k]);
+            if (!alive[k]) continue;
+            VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
+            setBatchLane(in, live, si[k], dir[k], scene.bsdfAt(si[k]).albedo(),
+                         draws.get2D(dims::kLightPoint), draws.get2D(dims::kBsdfDirection));
+            lane[live++] = k;
+        }
+        if (live == 0) return;
+        shadeDiffuseBatch(light, scene.epsilon(), in, live, out);
+        for (int j = 0; j < live; ++j) {
+            const int k = lane[j];
+            Vec3f direct(0.0f);
+            if (out.shadow[j]) {
+                ++counters.shadowRays;
+                if (!scene.occluded({out.sox[j], out.soy[j], out.soz[j]},
+                                    {out.sdx[j], out.sdy[j], out.sdz[j]}, 1 - 1e-4f))
+                    direct = {out.directR[j], out.directG[j], out.directB[j]};
+            }
+            L[k] += beta[k] * direct;
+            if (!out.bounce[j]) {
+                alive[k] = false;
+                continue;
+            }
+            beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
+            prevBsdfPdf[k] = out.pdf[j];
+            prevPoint[k] = si[k].p;
+            prevNormal[k] = si[k].ns;
+            origin[k] = {out.ox[j], out.oy[j], out.oz[j]};
+            dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
+            if (settings.russianRoulette && depth >= settings.rouletteDepth) {
+                const float q = std::max(0.0f, 1 - maxComponent(beta[k]));
+                VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
+                if (q > 0 && draws.get1D(dims::kRoulette) < q) {
+                    alive[k] = false;
+                    continue;
+                }
+                beta[k] *= 1 / (1 - q);
+            }
+            if (isBlack(beta[k])) alive[k] = false;
+        }
+    }
 }
 
 }  // namespace pathlab

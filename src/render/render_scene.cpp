@@ -1,5 +1,6 @@
 #include "render/render_scene.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace pathlab {
@@ -34,6 +35,10 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              mesh.uvs.empty() ? nullptr : mesh.uvs.data(),
                              lights_->trianglesLights(unsigned(m)), mesh.material});
     }
+    batchesDiffusePaths_ =
+        lights_->onlyAreaLight() && isBlack(desc_.environment) &&
+        std::all_of(desc_.materials.begin(), desc_.materials.end(),
+                    [](const Material& m) { return m.type == MaterialType::Diffuse; });
 }
 
 bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {

@@ -45,6 +45,12 @@ class RenderScene {
         return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
     }
     Bsdf bsdfAt(const SurfaceInteraction& si) const;
+    // The ray-origin offset of offsetOrigin.
+    float epsilon() const { return epsilon_; }
+    // True when every material is Lambertian and the only light is one area
+    // light sampled by area: then paths are traced eight at a time
+    // (estimateRadianceBatch).
+    bool batchesDiffusePaths() const { return batchesDiffusePaths_; }
 
   private:
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
@@ -66,6 +72,7 @@ class RenderScene {
     std::vector<std::vector<Vec3f>> triangleNormals_;  // per mesh, per triangle
     std::vector<MeshHitData> meshHits_;                // per mesh
     float epsilon_ = 1e-4f;
+    bool batchesDiffusePaths_ = false;
 };
 
 // Inline: at every vertex; the texture coordinates are read only for a

@@ -83,9 +83,16 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
         scene.intersectPacket(camera.eye(), dirs, count, first, found);
         result.counters.rays += uint64_t(count);
         result.counters.dimensions += 2 * uint64_t(count);
+        Vec3f radiance[kPacketWidth];
+        if (integrator.batchDiffusePaths && scene.batchesDiffusePaths())
+            estimateRadianceBatch(scene, camera.eye(), dirs, found, first, count, sampler, pixel,
+                                  i0, integrator, result.counters, radiance);
+        else
+            for (int k = 0; k < count; ++k)
+                radiance[k] = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k],
+                                               sampler, pixel, i0 + k, integrator, result.counters);
         for (int k = 0; k < count; ++k) {
-            Vec3f L = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k], sampler,
-                                       pixel, i0 + k, integrator, result.counters);
+            Vec3f L = radiance[k];
             if (!isFinite(L)) {  // never let a NaN/Inf reach the image
                 ++nonFinite;
                 L = Vec3f(0.0f);
@@ -182,7 +189,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
     const PinholeCamera camera(scene.description().camera, res);
     const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
-                                        settings.rouletteDepth};
+                                        settings.rouletteDepth, settings.batchDiffusePaths};
 
     std::vector<Tile> tiles;
     for (int y = 0; y < res.y; y += kTileSize)

@@ -1,0 +1,55 @@
+#include "render/diffuse_batch.h"
+
+#include <immintrin.h>
+
+#include <cstring>
+
+namespace pathlab {
+
+// Four lanes at a time with SSE (every x86-64), and eight with AVX2 where the
+// processor has it (chosen at run time): the same operations either way, so
+// the same bits. The AVX2 code is compiled for AVX2 alone — without FMA, so
+// GCC contracts no multiply-add and rounding stays that of the scalar code.
+namespace sse {
+namespace {
+using F = float __attribute__((vector_size(16)));
+using I = int __attribute__((vector_size(16)));
+constexpr int kWidth = 4;
+F sqrtV(F x) {
+    return F(_mm_sqrt_ps(__m128(x)));
+}
+#include "render/diffuse_batch_lanes.inc"
+}  // namespace
+}  // namespace sse
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+namespace {
+using F = float __attribute__((vector_size(32)));
+using I = int __attribute__((vector_size(32)));
+constexpr int kWidth = 8;
+F sqrtV(F x) {
+    return F(_mm256_sqrt_ps(__m256(x)));
+}
+#include "render/diffuse_batch_lanes.inc"
+}  // namespace
+void shade(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+           DiffuseBatchOutput& out) {
+    shadeLanes(light, epsilon, in, 0, out);
+}
+}  // namespace avx2
+#pragma GCC pop_options
+
+bool batchUsesAvx2() {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2;
+}
+
+void shadeDiffuseBatch(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+                       int lanes, DiffuseBatchOutput& out, BatchIsa isa) {
+    if (isa == BatchIsa::Best && batchUsesAvx2()) return avx2::shade(light, epsilon, in, out);
+    for (int k = 0; k < lanes; k += sse::kWidth) sse::shadeLanes(light, epsilon, in, k, out);
+}
+
+}  // namespace pathlab

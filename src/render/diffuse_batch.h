@@ -1,0 +1,63 @@
+// The arithmetic of eight Lambertian path vertices at once: next-event
+// estimation towards one area light sampled by area, and the cosine-weighted
+// bounce. Scalar, this is most of a vertex's time outside Embree, and its
+// branches (which side of the surface, which wedge of the concentric disk,
+// which side to nudge a ray origin to) follow random numbers and mispredict;
+// here the eight lanes are structure-of-arrays, computed eight at a time with
+// AVX2 or four at a time with SSE, and every branch is a select.
+//
+// Every value is bit-identical to the scalar path (estimateDirect with
+// sampleByArea, Bsdf's Lambertian sample, Frame, offsetOrigin): the same IEEE
+// operations in the same order, lane by lane — tested against them in
+// tests/test_diffuse_batch.cpp. (No fused multiply-add: the build targets
+// x86-64 without FMA, where GCC contracts nothing.)
+#pragma once
+
+#include "core/math.h"
+#include "render/lights.h"
+
+namespace pathlab {
+
+inline constexpr int kBatchLanes = 8;
+
+// One vertex per lane: the hit, the ray that found it and the two 2D draws.
+struct DiffuseBatchInput {
+    float px[kBatchLanes], py[kBatchLanes], pz[kBatchLanes];  // hit point
+    float nx[kBatchLanes], ny[kBatchLanes], nz[kBatchLanes];  // shading normal
+    float gx[kBatchLanes], gy[kBatchLanes], gz[kBatchLanes];  // geometric normal
+    float dx[kBatchLanes], dy[kBatchLanes], dz[kBatchLanes];  // incoming direction
+    float ar[kBatchLanes], ag[kBatchLanes], ab[kBatchLanes];  // albedo
+    float lightU[kBatchLanes], lightV[kBatchLanes];           // light point draw
+    float dirU[kBatchLanes], dirV[kBatchLanes];               // BSDF direction draw
+};
+
+struct DiffuseBatchOutput {
+    // Next-event estimation: where shadow[k] is set, the shadow ray runs from
+    // shadowOrigin to shadowOrigin + shadowDir (t ≤ 1 − 10⁻⁴), and `direct`
+    // is estimateDirect's result when it is unblocked. Elsewhere no shadow
+    // ray is traced and estimateDirect returns zero.
+    float sox[kBatchLanes], soy[kBatchLanes], soz[kBatchLanes];
+    float sdx[kBatchLanes], sdy[kBatchLanes], sdz[kBatchLanes];
+    float directR[kBatchLanes], directG[kBatchLanes], directB[kBatchLanes];
+    int shadow[kBatchLanes];
+    // The bounce, where bounce[k] is set (else the BSDF sample failed): the
+    // world direction, its nudged origin, the throughput factor and the pdf.
+    float ox[kBatchLanes], oy[kBatchLanes], oz[kBatchLanes];
+    float wx[kBatchLanes], wy[kBatchLanes], wz[kBatchLanes];
+    float weightR[kBatchLanes], weightG[kBatchLanes], weightB[kBatchLanes];
+    float pdf[kBatchLanes];
+    int bounce[kBatchLanes];
+};
+
+// Which instructions shadeDiffuseBatch uses: the best the processor has
+// (AVX2, eight lanes at once), or SSE (four) — the same bits either way.
+enum class BatchIsa { Best, Sse };
+bool batchUsesAvx2();
+
+// Lanes 0 … lanes − 1 are shaded; lanes up to the next multiple of the
+// vector width are computed too and may hold anything. `epsilon` is
+// RenderScene's ray-origin offset.
+void shadeDiffuseBatch(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+                       int lanes, DiffuseBatchOutput& out, BatchIsa isa = BatchIsa::Best);
+
+}  // namespace pathlab
