@@ -26,32 +26,20 @@ void expectSame(Vec3f expected, float x, float y, float z, const char* what, int
         << expected.z << ") against (" << x << ", " << y << ", " << z << ")";
 }
 
-// The scalar next-event estimate and bounce of estimateRadiance at a
-// Lambertian vertex lit by one area light sampled by area.
+// What estimateRadiance computes at a Lambertian vertex lit by `light`: its
+// next-event sample (sampleDirect) and its bounce.
 struct ScalarVertex {
-    bool shadow = false;
-    Vec3f shadowOrigin, shadowDir, direct{0.0f};
+    std::optional<DirectSample> direct;
     std::optional<BsdfSample> bounce;
     Vec3f bounceDir, bounceOrigin;
 };
-ScalarVertex scalarVertex(const RenderScene& scene, const AreaLight& light,
-                          const SurfaceInteraction& si, Vec3f dir, Vec3f albedo, Vec2f uLight,
-                          Vec2f uDirection) {
+ScalarVertex scalarVertex(const RenderScene& scene, const SurfaceInteraction& si, Vec3f dir,
+                          Vec3f albedo, float uChoice, Vec2f uLight, Vec2f uDirection) {
     ScalarVertex v;
     const Frame frame(si.ns);
     const Vec3f wo = frame.toLocal(-dir);
     const Bsdf bsdf = Bsdf::diffuse(albedo);
-    if (const auto ls = sampleByArea(light, si.p, uLight, 1.0f)) {
-        const Vec3f wi = frame.toLocal(ls->wi);
-        const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
-        if (!isBlack(f)) {
-            v.shadow = true;
-            v.shadowOrigin = scene.offsetOrigin(si, ls->wi);
-            v.shadowDir = si.p + ls->wi * ls->distance - v.shadowOrigin;
-            const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
-            v.direct = f * ls->radiance * (weight / ls->pdf);
-        }
-    }
+    v.direct = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
     v.bounce = bsdf.sample(wo, 0, uDirection);
     if (v.bounce) {
         v.bounceDir = frame.toWorld(v.bounce->wi);
@@ -60,90 +48,130 @@ ScalarVertex scalarVertex(const RenderScene& scene, const AreaLight& light,
     return v;
 }
 
-// Lights of each kind the kernel distinguishes: the Cornell box's one-sided
-// parallelogram, a one-sided triangle, and both made two-sided.
-std::vector<AreaLight> testLights(const AreaLight& cornell) {
-    AreaLight triangle = cornell;
-    triangle.parallelogram = false;
-    triangle.rectangle = false;
-    triangle.area = cornell.area / 2;
-    std::vector<AreaLight> lights = {cornell, triangle};
-    for (AreaLight l : {cornell, triangle}) {
-        l.twoSided = true;
-        lights.push_back(l);
+// The Cornell box lit by each kind of light the kernel distinguishes: its
+// one-sided parallelogram, one triangle of it, both made two-sided (all
+// sampled by the kernel), and — with light samples drawn by LightSet — the
+// light sampled by solid angle, and the light with a sky (a light choice, and
+// shadow rays to infinity).
+std::vector<RenderScene> lightVariants() {
+    std::vector<RenderScene> scenes;
+    for (bool triangle : {false, true})
+        for (bool twoSided : {false, true}) {
+            SceneDescription desc = cornellBoxScene();
+            for (Mesh& m : desc.meshes) {
+                if (isBlack(m.emission)) continue;
+                m.twoSided = twoSided;
+                if (triangle) m.indices.resize(3);
+            }
+            scenes.emplace_back(desc);
+        }
+    scenes.emplace_back(cornellBoxScene(), LightSampling::SolidAngle);
+    SceneDescription sky = cornellBoxScene();
+    sky.environment = Vec3f(0.3f, 0.4f, 0.5f);
+    scenes.emplace_back(sky);
+    return scenes;
+}
+
+// Random vertices: points anywhere in the box, geometric normals any way,
+// shading normals bent off them, some black albedos, and draws that are
+// sometimes exactly 0 or ½ (the concentric disk's centre and axes).
+class RandomVertices {
+  public:
+    SurfaceInteraction interaction() {
+        SurfaceInteraction si;
+        si.p = Vec3f(unit() * 560, unit() * 560, unit() * 560);
+        si.ng = direction();
+        si.ns = normalize(si.ng + direction() * 0.5f);
+        if (dot(si.ns, si.ng) < 0) si.ns = -si.ns;
+        return si;
     }
-    return lights;
+    Vec3f direction() { return normalize(Vec3f(unit() - 0.5f, unit() - 0.5f, unit() - 0.5f)); }
+    Vec3f albedo() {
+        const float pick = unit();
+        if (pick < 0.1f) return Vec3f(0.0f);
+        return Vec3f(unit(), pick < 0.2f ? 0.0f : unit(), unit());
+    }
+    Vec2f draw2D() { return {draw(), draw()}; }
+    float unit() { return std::uniform_real_distribution<float>(0.0f, 1.0f)(rng_); }
+    float draw() {
+        const float u = unit();
+        return u < 0.05f ? 0.0f : (u < 0.1f ? 0.5f : unit());
+    }
+
+  private:
+    std::mt19937 rng_{7};
+};
+
+struct Outcomes {
+    int lanes = 0, shadows = 0, toInfinity = 0, bounces = 0;
+};
+
+// One batch of `lanes` random vertices, each output against the scalar code's.
+void compareBatch(const RenderScene& scene, BatchIsa isa, int lanes, RandomVertices& random,
+                  Outcomes& outcomes) {
+    const AreaLight* onlyLight = scene.lights().onlyAreaLight();
+    DiffuseBatchInput in{};
+    SurfaceInteraction si[kBatchLanes];
+    Vec3f dir[kBatchLanes], albedo[kBatchLanes];
+    float uChoice[kBatchLanes];
+    Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
+    for (int k = 0; k < lanes; ++k) {
+        si[k] = random.interaction();
+        dir[k] = random.direction();
+        albedo[k] = random.albedo();
+        uChoice[k] = random.unit();
+        uLight[k] = random.draw2D();
+        uDirection[k] = random.draw2D();
+        setBatchLane(in, k, si[k], dir[k], albedo[k], uLight[k], uDirection[k]);
+        if (!onlyLight)
+            setBatchLightSample(in, k,
+                                scene.lights().sample(si[k].p, si[k].ns, uChoice[k], uLight[k]));
+    }
+    DiffuseBatchOutput out;
+    shadeDiffuseBatch(onlyLight, scene.epsilon(), in, lanes, out, isa);
+    for (int k = 0; k < lanes; ++k) {
+        const ScalarVertex v =
+            scalarVertex(scene, si[k], dir[k], albedo[k], uChoice[k], uLight[k], uDirection[k]);
+        ++outcomes.lanes;
+        ASSERT_EQ(v.direct.has_value(), out.shadow[k] != 0) << "lane " << k;
+        if (v.direct) {
+            ++outcomes.shadows;
+            outcomes.toInfinity += std::isinf(v.direct->tMax);
+            expectSame(v.direct->origin, out.sox[k], out.soy[k], out.soz[k], "shadow origin", k);
+            expectSame(v.direct->toLight, out.sdx[k], out.sdy[k], out.sdz[k], "shadow ray", k);
+            EXPECT_TRUE(same(v.direct->tMax, out.shadowTMax[k])) << "shadow ray's end, lane " << k;
+            expectSame(v.direct->contribution, out.directR[k], out.directG[k], out.directB[k],
+                       "direct", k);
+        }
+        ASSERT_EQ(v.bounce.has_value(), out.bounce[k] != 0) << "lane " << k;
+        if (!v.bounce) continue;
+        ++outcomes.bounces;
+        expectSame(v.bounceDir, out.wx[k], out.wy[k], out.wz[k], "bounce direction", k);
+        expectSame(v.bounceOrigin, out.ox[k], out.oy[k], out.oz[k], "bounce origin", k);
+        expectSame(v.bounce->weight(), out.weightR[k], out.weightG[k], out.weightB[k],
+                   "bounce weight", k);
+        EXPECT_TRUE(same(v.bounce->pdf, out.pdf[k])) << "bounce pdf of lane " << k;
+    }
 }
 
 TEST(DiffuseBatch, MatchesTheScalarVertexBitForBit) {
     if (!batchUsesAvx2()) std::cout << "(this processor has no AVX2: SSE only)\n";
-    const RenderScene scene(cornellBoxScene());
-    ASSERT_TRUE(scene.batchesDiffusePaths());
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    auto point = [&] { return Vec3f(unit(rng) * 560, unit(rng) * 560, unit(rng) * 560); };
-    auto direction = [&] {
-        return normalize(Vec3f(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f));
-    };
-    // A draw, sometimes exactly 0 or ½ (the concentric disk's centre and axes).
-    auto draw = [&] {
-        const float u = unit(rng);
-        return u < 0.05f ? 0.0f : (u < 0.1f ? 0.5f : unit(rng));
-    };
-    int shadows = 0, bounces = 0, lanesChecked = 0;
-    // Both instruction sets (Best is AVX2 where the processor has it).
+    RandomVertices random;
+    Outcomes outcomes;
+    // Both instruction sets (Best is AVX2 where the processor has it), every
+    // kind of light, every number of live lanes.
     for (BatchIsa isa : {BatchIsa::Best, BatchIsa::Sse})
-        for (const AreaLight& light : testLights(*scene.lights().onlyAreaLight())) {
-            for (int round = 0; round < 500; ++round) {
-                const int lanes = 1 + round % kBatchLanes;
-                DiffuseBatchInput in{};
-                SurfaceInteraction si[kBatchLanes];
-                Vec3f dir[kBatchLanes], albedo[kBatchLanes];
-                Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
-                for (int k = 0; k < lanes; ++k) {
-                    si[k].p = point();
-                    si[k].ng = direction();
-                    // A shading normal off the geometric one (smooth shading), on its side.
-                    si[k].ns = normalize(si[k].ng + direction() * 0.5f);
-                    if (dot(si[k].ns, si[k].ng) < 0) si[k].ns = -si[k].ns;
-                    dir[k] = direction();
-                    albedo[k] = Vec3f(unit(rng), round % 7 == 0 ? 0.0f : unit(rng), unit(rng));
-                    if (round % 11 == 0) albedo[k] = Vec3f(0.0f);
-                    uLight[k] = {draw(), draw()};
-                    uDirection[k] = {draw(), draw()};
-                    setBatchLane(in, k, si[k], dir[k], albedo[k], uLight[k], uDirection[k]);
-                }
-                DiffuseBatchOutput out;
-                shadeDiffuseBatch(light, scene.epsilon(), in, lanes, out, isa);
-                for (int k = 0; k < lanes; ++k) {
-                    const ScalarVertex v = scalarVertex(scene, light, si[k], dir[k], albedo[k],
-                                                        uLight[k], uDirection[k]);
-                    ++lanesChecked;
-                    ASSERT_EQ(v.shadow, out.shadow[k] != 0) << "lane " << k << " round " << round;
-                    if (v.shadow) {
-                        ++shadows;
-                        expectSame(v.shadowOrigin, out.sox[k], out.soy[k], out.soz[k],
-                                   "shadow origin", k);
-                        expectSame(v.shadowDir, out.sdx[k], out.sdy[k], out.sdz[k], "shadow ray",
-                                   k);
-                        expectSame(v.direct, out.directR[k], out.directG[k], out.directB[k],
-                                   "direct", k);
-                    }
-                    ASSERT_EQ(v.bounce.has_value(), out.bounce[k] != 0) << "lane " << k;
-                    if (!v.bounce) continue;
-                    ++bounces;
-                    expectSame(v.bounceDir, out.wx[k], out.wy[k], out.wz[k], "bounce direction", k);
-                    expectSame(v.bounceOrigin, out.ox[k], out.oy[k], out.oz[k], "bounce origin", k);
-                    expectSame(v.bounce->weight(), out.weightR[k], out.weightG[k], out.weightB[k],
-                               "bounce weight", k);
-                    EXPECT_TRUE(same(v.bounce->pdf, out.pdf[k])) << "bounce pdf of lane " << k;
-                }
-            }
+        for (const RenderScene& scene : lightVariants()) {
+            ASSERT_TRUE(scene.batchesDiffusePaths());
+            for (int round = 0; round < 500; ++round)
+                compareBatch(scene, isa, 1 + round % kBatchLanes, random, outcomes);
         }
     // Both outcomes of each test were met, not only one.
-    EXPECT_GT(shadows, lanesChecked / 8);
-    EXPECT_LT(shadows, lanesChecked);
-    EXPECT_GT(bounces, lanesChecked / 2);
+    EXPECT_GT(outcomes.shadows, outcomes.lanes / 8);
+    EXPECT_LT(outcomes.shadows, outcomes.lanes);
+    EXPECT_GT(outcomes.bounces, outcomes.lanes / 2);
+    EXPECT_GT(outcomes.toInfinity, 0);
+    EXPECT_LT(outcomes.toInfinity, outcomes.shadows / 2);
 }
 
 std::vector<float> renderImage(const RenderScene& scene, RenderSettings s, bool batch,
@@ -181,19 +209,19 @@ TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithEverySampler) {
 }
 
 TEST(DiffuseBatch, RendersTheScalarIntegratorsImageForEverySetting) {
-    // A partial last packet (13 spp), no roulette, a short and a long path.
-    SceneDescription desc = cornellBoxScene();
-    const RenderScene scene(desc);
-    for (int spp : {1, 13})
-        for (bool roulette : {false, true})
-            for (int depth : {1, 3, 20}) {
-                RenderSettings s;
-                s.resolution = {16, 16};
-                s.samplesPerPixel = spp;
-                s.russianRoulette = roulette;
-                s.maxDepth = depth;
-                expectSameRender(scene, s);
-            }
+    // Every kind of light; a partial last packet (13 spp); with and without
+    // roulette; a short and a long path.
+    for (const RenderScene& scene : lightVariants())
+        for (int spp : {1, 13})
+            for (bool roulette : {false, true})
+                for (int depth : {1, 3, 20}) {
+                    RenderSettings s;
+                    s.resolution = {12, 12};
+                    s.samplesPerPixel = spp;
+                    s.russianRoulette = roulette;
+                    s.maxDepth = depth;
+                    expectSameRender(scene, s);
+                }
 }
 
 TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithTexturesAndSmoothNormals) {
@@ -224,15 +252,14 @@ TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithTexturesAndSmoothNormals)
     expectSameRender(scene, s);
 }
 
-TEST(DiffuseBatch, OnlyLambertianScenesWithOneAreaLightAreBatched) {
+TEST(DiffuseBatch, OnlyLambertianScenesAreBatched) {
     EXPECT_TRUE(RenderScene(cornellBoxScene()).batchesDiffusePaths());
-    SceneDescription mirror = cornellBoxScene();
-    mirror.materials[0].type = MaterialType::Mirror;
-    EXPECT_FALSE(RenderScene(mirror).batchesDiffusePaths());
-    SceneDescription sky = cornellBoxScene();
-    sky.environment = Vec3f(0.1f);
-    EXPECT_FALSE(RenderScene(sky).batchesDiffusePaths());
-    EXPECT_FALSE(RenderScene(cornellBoxScene(), LightSampling::SolidAngle).batchesDiffusePaths());
+    for (MaterialType type :
+         {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor}) {
+        SceneDescription desc = cornellBoxScene();
+        desc.materials[0].type = type;
+        EXPECT_FALSE(RenderScene(desc).batchesDiffusePaths());
+    }
 }
 
 }  // namespace

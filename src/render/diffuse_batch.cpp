@@ -34,7 +34,7 @@ F sqrtV(F x) {
 }
 #include "render/diffuse_batch_lanes.inc"
 }  // namespace
-void shade(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+void shade(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
            DiffuseBatchOutput& out) {
     shadeLanes(light, epsilon, in, 0, out);
 }
@@ -46,7 +46,7 @@ bool batchUsesAvx2() {
     return avx2;
 }
 
-void shadeDiffuseBatch(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+void shadeDiffuseBatch(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
                        int lanes, DiffuseBatchOutput& out, BatchIsa isa) {
     if (isa == BatchIsa::Best && batchUsesAvx2()) return avx2::shade(light, epsilon, in, out);
     for (int k = 0; k < lanes; k += sse::kWidth) sse::shadeLanes(light, epsilon, in, k, out);

@@ -1,10 +1,10 @@
 // The arithmetic of eight Lambertian path vertices at once: next-event
-// estimation towards one area light sampled by area, and the cosine-weighted
-// bounce. Scalar, this is most of a vertex's time outside Embree, and its
-// branches (which side of the surface, which wedge of the concentric disk,
-// which side to nudge a ray origin to) follow random numbers and mispredict;
-// here the eight lanes are structure-of-arrays, computed eight at a time with
-// AVX2 or four at a time with SSE, and every branch is a select.
+// estimation (towards one area light sampled by area here, or with light
+// samples drawn by the caller) and the cosine-weighted bounce. Scalar, this is most of a vertex's
+// time outside Embree, and its branches (which side of the surface, which wedge of the concentric
+// disk, which side to nudge a ray origin to) follow random numbers and mispredict; here the eight
+// lanes are structure-of-arrays, computed eight at a time with AVX2 or four at a time with SSE, and
+// every branch is a select.
 //
 // Every value is bit-identical to the scalar path (estimateDirect with
 // sampleByArea, Bsdf's Lambertian sample, Frame, offsetOrigin): the same IEEE
@@ -27,17 +27,28 @@ struct DiffuseBatchInput {
     float gx[kBatchLanes], gy[kBatchLanes], gz[kBatchLanes];  // geometric normal
     float dx[kBatchLanes], dy[kBatchLanes], dz[kBatchLanes];  // incoming direction
     float ar[kBatchLanes], ag[kBatchLanes], ab[kBatchLanes];  // albedo
-    float lightU[kBatchLanes], lightV[kBatchLanes];           // light point draw
     float dirU[kBatchLanes], dirV[kBatchLanes];               // BSDF direction draw
+    // With one area light sampled by area, the light point's draw; the kernel
+    // samples the light itself.
+    float lightU[kBatchLanes], lightV[kBatchLanes];
+    // Otherwise the light sample the caller drew (LightSet::sample): direction,
+    // distance (infinite for the environment), radiance, pdf, and whether
+    // there is one.
+    float lightWx[kBatchLanes], lightWy[kBatchLanes], lightWz[kBatchLanes];
+    float lightDistance[kBatchLanes];
+    float lightR[kBatchLanes], lightG[kBatchLanes], lightB[kBatchLanes];
+    float lightPdf[kBatchLanes];
+    int lightValid[kBatchLanes];
 };
 
 struct DiffuseBatchOutput {
-    // Next-event estimation: where shadow[k] is set, the shadow ray runs from
-    // shadowOrigin to shadowOrigin + shadowDir (t ≤ 1 − 10⁻⁴), and `direct`
-    // is estimateDirect's result when it is unblocked. Elsewhere no shadow
-    // ray is traced and estimateDirect returns zero.
+    // Next-event estimation (sampleDirect): where shadow[k] is set, the
+    // shadow ray is o + t·d from so to so + sd, t < shadowTMax, and `direct`
+    // is the estimate when it is unblocked. Elsewhere no shadow ray is traced
+    // and the estimate is zero.
     float sox[kBatchLanes], soy[kBatchLanes], soz[kBatchLanes];
     float sdx[kBatchLanes], sdy[kBatchLanes], sdz[kBatchLanes];
+    float shadowTMax[kBatchLanes];
     float directR[kBatchLanes], directG[kBatchLanes], directB[kBatchLanes];
     int shadow[kBatchLanes];
     // The bounce, where bounce[k] is set (else the BSDF sample failed): the
@@ -55,9 +66,10 @@ enum class BatchIsa { Best, Sse };
 bool batchUsesAvx2();
 
 // Lanes 0 … lanes − 1 are shaded; lanes up to the next multiple of the
-// vector width are computed too and may hold anything. `epsilon` is
-// RenderScene's ray-origin offset.
-void shadeDiffuseBatch(const AreaLight& light, float epsilon, const DiffuseBatchInput& in,
+// vector width are computed too and may hold anything. `light`: the scene's
+// only light, sampled here; null: the input carries each lane's light sample.
+// `epsilon` is RenderScene's ray-origin offset.
+void shadeDiffuseBatch(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
                        int lanes, DiffuseBatchOutput& out, BatchIsa isa = BatchIsa::Best);
 
 }  // namespace pathlab

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 
 #include "render/diffuse_batch.h"
 #include "render/integrator_settings.h"
@@ -63,17 +64,25 @@ class VertexDimensions {
     PathCounters& counters_;
 };
 
-// Next-event estimation at a non-specular vertex: one light sample, weighted
-// against the BSDF's density for the same direction (power heuristic).
-inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
-                            const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
-                            Vec2f uLight, PathCounters& counters) {
+// Next-event estimation at a non-specular vertex, up to its shadow ray: one
+// light sample, weighted against the BSDF's density for the same direction
+// (power heuristic). Nothing when the sample cannot contribute (no shadow
+// ray is traced then); otherwise the shadow ray and what the sample adds if
+// the ray is unblocked.
+struct DirectSample {
+    Vec3f origin, toLight;  // the shadow ray o + t·d, 0 < t < tMax
+    float tMax;
+    Vec3f contribution;
+};
+inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
+                                                const SurfaceInteraction& si, const Frame& frame,
+                                                const Bsdf& bsdf, Vec3f wo, float uChoice,
+                                                Vec2f uLight) {
     const auto ls = scene.lights().sample(si.p, si.ns, uChoice, uLight);
-    if (!ls) return Vec3f(0.0f);
+    if (!ls) return std::nullopt;
     const Vec3f wi = frame.toLocal(ls->wi);
     const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
-    if (isBlack(f)) return Vec3f(0.0f);
-    ++counters.shadowRays;
+    if (isBlack(f)) return std::nullopt;
     // The shadow ray runs from the nudged origin to the light point itself, as
     // pbrt-v4's SpawnRayTo: with the unnormalised difference as its direction,
     // t = 1 is the light, and it stops at 1 − 10⁻⁴ so it cannot hit the light
@@ -81,13 +90,21 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     // the segment, ε off it, and crosses the light's plane up to ε/cosθ early:
     // grazing samples of a nearby light were blocked by the light.)
     const Vec3f origin = scene.offsetOrigin(si, ls->wi);
-    const bool blocked =
-        std::isinf(ls->distance)
-            ? scene.occluded(origin, ls->wi, ls->distance)
-            : scene.occluded(origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f);
-    if (blocked) return Vec3f(0.0f);
     const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
-    return f * ls->radiance * (weight / ls->pdf);
+    const Vec3f contribution = f * ls->radiance * (weight / ls->pdf);
+    if (std::isinf(ls->distance)) return DirectSample{origin, ls->wi, ls->distance, contribution};
+    return DirectSample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
+}
+
+// The estimate itself: the sample's contribution unless its shadow ray is blocked.
+inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
+                            const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
+                            Vec2f uLight, PathCounters& counters) {
+    const auto d = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
+    if (!d) return Vec3f(0.0f);
+    ++counters.shadowRays;
+    if (scene.occluded(d->origin, d->toLight, d->tMax)) return Vec3f(0.0f);
+    return d->contribution;
 }
 
 // What the ray that found a vertex (or escaped: !found) adds to L: the
@@ -199,9 +216,18 @@ inline void setBatchLane(DiffuseBatchInput& in, int k, const SurfaceInteraction&
     in.dirU[k] = uDirection.x, in.dirV[k] = uDirection.y;
 }
 
+inline void setBatchLightSample(DiffuseBatchInput& in, int k,
+                                const std::optional<LightSample>& ls) {
+    in.lightValid[k] = ls.has_value();
+    if (!ls) return;
+    in.lightWx[k] = ls->wi.x, in.lightWy[k] = ls->wi.y, in.lightWz[k] = ls->wi.z;
+    in.lightDistance[k] = ls->distance;
+    in.lightR[k] = ls->radiance.x, in.lightG[k] = ls->radiance.y, in.lightB[k] = ls->radiance.z;
+    in.lightPdf[k] = ls->pdf;
+}
+
 // The paths of a camera packet, traced together where every surface is
-// Lambertian and one area light is sampled by area
-// (RenderScene::batchesDiffusePaths): the same estimator as estimateRadiance,
+// Lambertian (RenderScene::batchesDiffusePaths): the same estimator as estimateRadiance,
 // bit for bit, but each bounce's arithmetic for all live paths runs as one
 // shadeDiffuseBatch. Rays are still traced one at a time, and a sampler's
 // values are pure functions of (pixel, index, dimension, seed), so the draws
@@ -213,7 +239,9 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
                            const IntegratorSettings& settings, PathCounters& counters, Vec3f* L) {
     static_assert(kPacketWidth <= kBatchLanes, "a camera packet fills at most one batch");
     const LightSet& lights = scene.lights();
-    const AreaLight& light = *lights.onlyAreaLight();
+    // One area light sampled by area: the kernel samples it; otherwise each
+    // lane's light sample is drawn here, one at a time.
+    const AreaLight* onlyLight = lights.onlyAreaLight();
     Vec3f beta[kBatchLanes], origin[kBatchLanes], dir[kBatchLanes];
     Vec3f prevPoint[kBatchLanes], prevNormal[kBatchLanes];
     float prevBsdfPdf[kBatchLanes] = {};
@@ -236,19 +264,23 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
                                  si[k], beta[k], prevBsdfPdf[k], prevPoint[k], prevNormal[k], L[k]);
             if (!alive[k]) continue;
             VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
-            setBatchLane(in, live, si[k], dir[k], scene.bsdfAt(si[k]).albedo(),
-                         draws.get2D(dims::kLightPoint), draws.get2D(dims::kBsdfDirection));
+            const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
+            const Vec2f uLight = draws.get2D(dims::kLightPoint);
+            setBatchLane(in, live, si[k], dir[k], scene.bsdfAt(si[k]).albedo(), uLight,
+                         draws.get2D(dims::kBsdfDirection));
+            if (!onlyLight)
+                setBatchLightSample(in, live, lights.sample(si[k].p, si[k].ns, uChoice, uLight));
             lane[live++] = k;
         }
         if (live == 0) return;
-        shadeDiffuseBatch(light, scene.epsilon(), in, live, out);
+        shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
             Vec3f direct(0.0f);
             if (out.shadow[j]) {
                 ++counters.shadowRays;
                 if (!scene.occluded({out.sox[j], out.soy[j], out.soz[j]},
-                                    {out.sdx[j], out.sdy[j], out.sdz[j]}, 1 - 1e-4f))
+                                    {out.sdx[j], out.sdy[j], out.sdz[j]}, out.shadowTMax[j]))
                     direct = {out.directR[j], out.directG[j], out.directB[j]};
             }
             L[k] += beta[k] * direct;

@@ -36,7 +36,6 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              lights_->trianglesLights(unsigned(m)), mesh.material});
     }
     batchesDiffusePaths_ =
-        lights_->onlyAreaLight() && isBlack(desc_.environment) &&
         std::all_of(desc_.materials.begin(), desc_.materials.end(),
                     [](const Material& m) { return m.type == MaterialType::Diffuse; });
 }

@@ -47,9 +47,8 @@ class RenderScene {
     Bsdf bsdfAt(const SurfaceInteraction& si) const;
     // The ray-origin offset of offsetOrigin.
     float epsilon() const { return epsilon_; }
-    // True when every material is Lambertian and the only light is one area
-    // light sampled by area: then paths are traced eight at a time
-    // (estimateRadianceBatch).
+    // True when every material is Lambertian: then paths are traced eight at
+    // a time (estimateRadianceBatch).
     bool batchesDiffusePaths() const { return batchesDiffusePaths_; }
 
   private:
