@@ -12,6 +12,7 @@
 #include <array>
 
 #include "core/rng.h"
+#include "sampling/sampler.h"
 
 namespace pathlab {
 
@@ -26,13 +27,20 @@ class PcgSampleCursor {
             started_ = true;
             streamStart_.setSequence(key, 0);
             index_ = -1;
+            for (RecentSample& r : recent_) r.index = -1;
         }
         if (index != index_) {
-            if (index == index_ + 1 && index_ >= 0) {
-                sampleStart_.advance(kSampleJump);
+            RecentSample& recent = recent_[size_t(index) % recent_.size()];
+            if (recent.index == index) {
+                sampleStart_ = recent.start;
             } else {
-                sampleStart_ = streamStart_;
-                sampleStart_.advance(int64_t(index) * kStride);
+                if (index == index_ + 1 && index_ >= 0) {
+                    sampleStart_.advance(kSampleJump);
+                } else {
+                    sampleStart_ = streamStart_;
+                    sampleStart_.advance(int64_t(index) * kStride);
+                }
+                recent = {index, sampleStart_};
             }
             index_ = index;
         }
@@ -63,6 +71,14 @@ class PcgSampleCursor {
         return t;
     }();
 
+    // The block starts of the last kCameraPacketSamples samples: the renderer
+    // traces a camera packet's paths together, a bounce of each in turn, so
+    // the cursor returns to the packet's first sample at every bounce.
+    struct RecentSample {
+        int index = -1;
+        Pcg32 start;
+    };
+    std::array<RecentSample, kCameraPacketSamples> recent_;
     uint64_t key_ = 0;
     bool started_ = false;
     int index_ = -1;

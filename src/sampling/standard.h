@@ -10,6 +10,7 @@
 // (generate_canonical needs ceil(24 / log2(2^31 − 2)) = 1 call).
 #pragma once
 
+#include <array>
 #include <random>
 
 #include "core/hash.h"
@@ -33,10 +34,9 @@ class StandardSampler {
             return;
         }
         pixel_ = p, index_ = index, position_ = dim;
-        // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly.
-        const uint64_t h = hashValues(p.x, p.y, index, seed_);
-        engine_.seed(static_cast<uint32_t>(1 + h % 2147483646u));
-        engine_.discard(static_cast<unsigned long long>(dim));
+        // `dim` steps on from the sample's seed state x the state is
+        // x·16807^dim mod (2^31 − 1): one multiply instead of `dim`.
+        engine_.seed(static_cast<uint32_t>(seedState(p, index) * multiplierPower(dim) % kModulus));
     }
     float get1D() {
         // The presentation clamps every value to [0, 1 − ε]; generate_canonical
@@ -52,6 +52,42 @@ class StandardSampler {
     Vec2f getPixel2D() { return get2D(); }
 
   private:
+    // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly. The
+    // last kCameraPacketSamples samples' states are kept: the renderer
+    // returns to each sample of a camera packet at every bounce.
+    uint64_t seedState(Vec2i p, int index) {
+        RecentSample& recent = recent_[size_t(index) % recent_.size()];
+        if (recent.index != index || recent.pixel.x != p.x || recent.pixel.y != p.y)
+            recent = {p, index, 1 + hashValues(p.x, p.y, index, seed_) % 2147483646u};
+        return recent.state;
+    }
+    struct RecentSample {
+        Vec2i pixel{-1, -1};
+        int index = -1;
+        uint64_t state = 0;
+    };
+    std::array<RecentSample, kCameraPacketSamples> recent_;
+
+    static constexpr uint64_t kModulus = 2147483647, kMultiplier = 16807;
+    // 16807^n mod (2^31 − 1): tabulated for the first 1024 dimensions (4 KB,
+    // at compile time), by squaring beyond.
+    static constexpr int kTabulatedPowers = 1024;
+    static constexpr uint64_t powerBySquaring(uint64_t n) {
+        uint64_t result = 1, base = kMultiplier;
+        for (; n > 0; n >>= 1, base = base * base % kModulus)
+            if (n & 1) result = result * base % kModulus;
+        return result;
+    }
+    static constexpr std::array<uint32_t, kTabulatedPowers> kPowers = [] {
+        std::array<uint32_t, kTabulatedPowers> t{};
+        uint64_t power = 1;
+        for (auto& entry : t) entry = uint32_t(power), power = power * kMultiplier % kModulus;
+        return t;
+    }();
+    static uint64_t multiplierPower(int n) {
+        return n < kTabulatedPowers ? kPowers[size_t(n)] : powerBySquaring(uint64_t(n));
+    }
+
     int spp_;
     uint64_t seed_;
     Vec2i pixel_{-1, -1};
