@@ -326,6 +326,12 @@ TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
     EXPECT_EQ(s.drawn.size(), size_t(count * dimensionsPerPath(depth)));
     // The camera samples of the whole packet come first, as in the renderer.
     for (int k = 0; k < 2 * count; ++k) EXPECT_LT(s.drawn[size_t(k)].second, 2);
+    // Then depth by depth over the packet's paths, as estimateRadianceBatch
+    // traces them.
+    for (size_t i = size_t(2 * count) + 1; i < s.drawn.size(); ++i)
+        EXPECT_LE(dims::depthOfDimension(s.drawn[i - 1].second),
+                  dims::depthOfDimension(s.drawn[i].second))
+            << "draw " << i;
 }
 
 }  // namespace

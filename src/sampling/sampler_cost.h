@@ -1,10 +1,11 @@
 // What a sampler costs per dimension when drawn the way the renderer draws on
 // the Cornell box: the camera rays of a packet of kCameraPacketSamples samples
-// first (startPixelSample at dimension 0, getPixel2D each), then each sample's path,
-// vertex by vertex, with the draws of a diffuse vertex and one light — the light
-// point (dims::kLightPoint), the BSDF direction (dims::kBsdfDirection, a second
-// startPixelSample since the lobe dimension between them is skipped) and, from
-// the third vertex on, Russian roulette (dims::kRoulette, pbrt-v4's default).
+// first (startPixelSample at dimension 0, getPixel2D each), then the packet's
+// paths together, as estimateRadianceBatch traces them: at each vertex depth,
+// every path's light point (dims::kLightPoint) and BSDF direction
+// (dims::kBsdfDirection, a second startPixelSample since the lobe dimension
+// between them is skipped), then — from the third vertex on — every path's
+// Russian roulette (dims::kRoulette, pbrt-v4's default).
 // Shared by the Google Benchmark microbenchmarks and `pathlab bench --samplers`,
 // which multiplies it by the dimensions a frame draws.
 #pragma once
@@ -34,15 +35,19 @@ float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int dep
         const Vec2f p = s.getPixel2D();
         acc += p.x + p.y;
     }
-    for (int k = 0; k < count; ++k) {
-        for (int d = 0; d < depth; ++d) {
-            const int base = dims::bounceBase(d);
+    for (int d = 0; d < depth; ++d) {
+        const int base = dims::bounceBase(d);
+        for (int k = 0; k < count; ++k) {
             s.startPixelSample(pixel, firstIndex + k, base + dims::kLightPoint);
             const Vec2f light = s.get2D();
             s.startPixelSample(pixel, firstIndex + k, base + dims::kBsdfDirection);
             const Vec2f dir = s.get2D();
             acc += light.x + light.y + dir.x + dir.y;
-            if (d >= kCostRouletteDepth) acc += s.get1D();
+        }
+        if (d < kCostRouletteDepth) continue;
+        for (int k = 0; k < count; ++k) {
+            s.startPixelSample(pixel, firstIndex + k, base + dims::kRoulette);
+            acc += s.get1D();
         }
     }
     return acc;
