@@ -29,21 +29,7 @@ class PcgSampleCursor {
             index_ = -1;
             for (RecentSample& r : recent_) r.index = -1;
         }
-        if (index != index_) {
-            RecentSample& recent = recent_[size_t(index) % recent_.size()];
-            if (recent.index == index) {
-                sampleStart_ = recent.start;
-            } else {
-                if (index == index_ + 1 && index_ >= 0) {
-                    sampleStart_.advance(kSampleJump);
-                } else {
-                    sampleStart_ = streamStart_;
-                    sampleStart_.advance(int64_t(index) * kStride);
-                }
-                recent = {index, sampleStart_};
-            }
-            index_ = index;
-        }
+        if (index != index_) startSample(index);
         position_ = dim;
     }
     // Draw position_ of the sample's block, from the block's start by a
@@ -61,6 +47,24 @@ class PcgSampleCursor {
     }
 
   private:
+    // Out of line: the renderer inlines seek into every path vertex, and this
+    // part runs only when the sample changes.
+    [[gnu::noinline]] void startSample(int index) {
+        RecentSample& recent = recent_[size_t(index) % recent_.size()];
+        if (recent.index == index) {
+            sampleStart_ = recent.start;
+        } else {
+            if (index == index_ + 1 && index_ >= 0) {
+                sampleStart_.advance(kSampleJump);
+            } else {
+                sampleStart_ = streamStart_;
+                sampleStart_.advance(int64_t(index) * kStride);
+            }
+            recent = {index, sampleStart_};
+        }
+        index_ = index;
+    }
+
     static constexpr Pcg32::Jump kSampleJump = Pcg32::jump(kStride);
     // The jumps to a block's first kTabulatedDraws draws (16 KB, computed at
     // compile time).
