@@ -96,15 +96,32 @@ inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
     return DirectSample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
 }
 
-// The estimate itself: the sample's contribution unless its shadow ray is blocked.
+// A sample's estimate: its contribution unless its shadow ray is blocked.
+inline Vec3f traceShadowRay(const RenderScene& scene, const DirectSample& d,
+                            PathCounters& counters) {
+    ++counters.shadowRays;
+    return scene.occluded(d.origin, d.toLight, d.tMax) ? Vec3f(0.0f) : d.contribution;
+}
+
 inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
                             const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
                             Vec2f uLight, PathCounters& counters) {
     const auto d = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
-    if (!d) return Vec3f(0.0f);
-    ++counters.shadowRays;
-    if (scene.occluded(d->origin, d->toLight, d->tMax)) return Vec3f(0.0f);
-    return d->contribution;
+    return d ? traceShadowRay(scene, *d, counters) : Vec3f(0.0f);
+}
+
+// After a vertex's bounce: Russian roulette, from vertex rouletteDepth on
+// (its number drawn only when it can end the path), then the end of a path
+// whose throughput is zero. False when the path ends.
+template <Sampler S>
+bool pathContinues(const IntegratorSettings& settings, int depth, VertexDimensions<S>& draws,
+                   Vec3f& beta) {
+    if (settings.russianRoulette && depth >= settings.rouletteDepth) {
+        const float q = std::max(0.0f, 1 - maxComponent(beta));
+        if (q > 0 && draws.get1D(dims::kRoulette) < q) return false;
+        beta *= 1 / (1 - q);
+    }
+    return !isBlack(beta);
 }
 
 // What the ray that found a vertex (or escaped: !found) adds to L: the
@@ -177,12 +194,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         origin = scene.offsetOrigin(si, wi);
         dir = wi;
 
-        if (settings.russianRoulette && depth >= settings.rouletteDepth) {
-            const float q = std::max(0.0f, 1 - maxComponent(beta));
-            if (q > 0 && draws.get1D(dims::kRoulette) < q) break;
-            beta *= 1 / (1 - q);
-        }
-        if (isBlack(beta)) break;
+        if (!pathContinues(settings, depth, draws, beta)) break;
     }
     return L;
 }
@@ -276,13 +288,14 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
         shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
-            Vec3f direct(0.0f);
-            if (out.shadow[j]) {
-                ++counters.shadowRays;
-                if (!scene.occluded({out.sox[j], out.soy[j], out.soz[j]},
-                                    {out.sdx[j], out.sdy[j], out.sdz[j]}, out.shadowTMax[j]))
-                    direct = {out.directR[j], out.directG[j], out.directB[j]};
-            }
+            const Vec3f direct =
+                out.shadow[j] ? traceShadowRay(scene,
+                                               {{out.sox[j], out.soy[j], out.soz[j]},
+                                                {out.sdx[j], out.sdy[j], out.sdz[j]},
+                                                out.shadowTMax[j],
+                                                {out.directR[j], out.directG[j], out.directB[j]}},
+                                               counters)
+                              : Vec3f(0.0f);
             L[k] += beta[k] * direct;
             if (!out.bounce[j]) {
                 alive[k] = false;
@@ -294,16 +307,8 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
             prevNormal[k] = si[k].ns;
             origin[k] = {out.ox[j], out.oy[j], out.oz[j]};
             dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
-            if (settings.russianRoulette && depth >= settings.rouletteDepth) {
-                const float q = std::max(0.0f, 1 - maxComponent(beta[k]));
-                VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
-                if (q > 0 && draws.get1D(dims::kRoulette) < q) {
-                    alive[k] = false;
-                    continue;
-                }
-                beta[k] *= 1 / (1 - q);
-            }
-            if (isBlack(beta[k])) alive[k] = false;
+            VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
+            alive[k] = pathContinues(settings, depth, draws, beta[k]);
         }
     }
 }
