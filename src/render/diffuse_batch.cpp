@@ -22,13 +22,19 @@ F sqrtV(F x) {
 }  // namespace
 }  // namespace sse
 
+// GCC and Clang spell "compile this region for AVX2" differently.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 namespace avx2 {
 namespace {
 using F = float __attribute__((vector_size(32)));
 using I = int __attribute__((vector_size(32)));
 constexpr int kWidth = 8;
+static_assert(kWidth == kBatchLanes, "one AVX2 pass shades a whole batch");
 F sqrtV(F x) {
     return F(_mm256_sqrt_ps(__m256(x)));
 }
@@ -39,7 +45,11 @@ void shade(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
     shadeLanes(light, epsilon, in, 0, out);
 }
 }  // namespace avx2
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
 bool batchUsesAvx2() {
     static const bool avx2 = __builtin_cpu_supports("avx2");
