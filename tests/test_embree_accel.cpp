@@ -1,4 +1,4 @@
-// The ray queries behind the renderer: packets agree with single rays, and the
+// The ray queries behind the renderer: packets and lanes agree with single rays, and the
 // recorder sees exactly the rays a render reports.
 #include <gtest/gtest.h>
 
@@ -45,6 +45,63 @@ TEST(EmbreeAccel, PacketHitsEqualSingleRayHits) {
         }
     }
     EXPECT_GT(hitCount, 1000);
+}
+
+// Lanes of any origin: inside the box towards random directions, some
+// inactive, some shadow rays cut short. Each active lane must answer as the
+// single-ray query does (bit for bit: the batched integrator relies on it),
+// and no inactive lane may report anything.
+TEST(EmbreeAccel, LaneQueriesEqualSingleRayQueries) {
+    const SceneDescription scene = cornellBoxScene();
+    const EmbreeAccel accel(scene);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const Vec3f lo = accel.boundsMin(), hi = accel.boundsMax();
+    int hits = 0, blockedCount = 0, active = 0;
+    for (int packet = 0; packet < 400; ++packet) {
+        alignas(32) float o[3][kPacketWidth], d[3][kPacketWidth], tMax[kPacketWidth];
+        int on[kPacketWidth];
+        for (int k = 0; k < kPacketWidth; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                o[a][k] = lo[a] + (hi[a] - lo[a]) * (0.05f + 0.9f * unit(rng));
+                d[a][k] = 2 * unit(rng) - 1;
+            }
+            tMax[k] = (hi.x - lo.x) * (0.05f + 0.95f * unit(rng));
+            on[k] = unit(rng) < 0.7f;
+        }
+        const int count = 1 + packet % kPacketWidth;
+        const RayLanes lanes{o[0], o[1], o[2], d[0], d[1], d[2], tMax, on, count};
+        RayHit laneHits[kPacketWidth];
+        bool found[kPacketWidth], blocked[kPacketWidth];
+        accel.intersectLanes({o[0], o[1], o[2], d[0], d[1], d[2], nullptr, on, count}, laneHits,
+                             found);
+        accel.occludedLanes(lanes, blocked);
+        for (int k = 0; k < count; ++k) {
+            if (!on[k]) {
+                EXPECT_FALSE(found[k] || blocked[k]);
+                continue;
+            }
+            ++active;
+            const Vec3f ok(o[0][k], o[1][k], o[2][k]), dk(d[0][k], d[1][k], d[2][k]);
+            RayHit single;
+            const bool hit =
+                accel.intersect(ok, dk, std::numeric_limits<float>::infinity(), &single);
+            ASSERT_EQ(found[k], hit);
+            EXPECT_EQ(blocked[k], accel.occluded(ok, dk, tMax[k]));
+            hits += hit, blockedCount += blocked[k];
+            if (!hit) continue;
+            EXPECT_EQ(laneHits[k].geomId, single.geomId);
+            EXPECT_EQ(laneHits[k].primId, single.primId);
+            EXPECT_EQ(laneHits[k].t, single.t);
+            EXPECT_EQ(laneHits[k].u, single.u);
+            EXPECT_EQ(laneHits[k].v, single.v);
+        }
+    }
+    // Inside a closed box, most rays hit; the short shadow rays are blocked
+    // only sometimes.
+    EXPECT_GT(hits, active / 2);
+    EXPECT_GT(blockedCount, active / 20);
+    EXPECT_LT(blockedCount, active);
 }
 
 TEST(EmbreeAccel, RecorderSeesEveryRayTheRenderCounts) {

@@ -199,24 +199,6 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
     return L;
 }
 
-// estimateRadiance's start of a vertex, for one lane of estimateRadianceBatch:
-// trace the ray (after the camera's), add what it finds emitted, and say
-// whether the path goes on to shade the hit. Lambertian scenes have no
-// specular bounce: only the camera ray's emission is unweighted.
-inline bool startBatchVertex(const RenderScene& scene, int depth,
-                             const IntegratorSettings& settings, PathCounters& counters,
-                             Vec3f origin, Vec3f dir, bool& found, SurfaceInteraction& si,
-                             Vec3f beta, float prevBsdfPdf, Vec3f prevPoint, Vec3f prevNormal,
-                             Vec3f& L) {
-    if (depth > 0) {
-        ++counters.rays;
-        found = scene.intersect(origin, dir, &si);
-    }
-    addEmission(scene.lights(), found, si, dir, beta, depth == 0, prevBsdfPdf, prevPoint,
-                prevNormal, L);
-    return found && depth != settings.maxDepth;
-}
-
 inline void setBatchLane(DiffuseBatchInput& in, int k, const SurfaceInteraction& si, Vec3f dir,
                          Vec3f albedo, Vec2f uLight, Vec2f uDirection) {
     in.px[k] = si.p.x, in.py[k] = si.p.y, in.pz[k] = si.p.z;
@@ -239,41 +221,42 @@ inline void setBatchLightSample(DiffuseBatchInput& in, int k,
 }
 
 // The paths of a camera packet, traced together where every surface is
-// Lambertian (RenderScene::batchesDiffusePaths): the same estimator as estimateRadiance,
-// bit for bit, but each bounce's arithmetic for all live paths runs as one
-// shadeDiffuseBatch. Rays are still traced one at a time, and a sampler's
-// values are pure functions of (pixel, index, dimension, seed), so the draws
-// may be made lane after lane. L[k] receives path k's radiance.
+// Lambertian (RenderScene::batchesDiffusePaths): the same estimator as
+// estimateRadiance, bit for bit, but each bounce's arithmetic for all live
+// paths runs as one shadeDiffuseBatch, and its shadow rays and bounce rays are
+// each traced as one Embree packet. A sampler's values are pure functions of
+// (pixel, index, dimension, seed), so the draws may be made lane after lane.
+// On entry found[k] and si[k] hold camera ray k's hit; they are the paths'
+// working state, overwritten. L[k] receives path k's radiance.
 template <Sampler S>
-void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dirs,
-                           const bool* cameraFound, const SurfaceInteraction* cameraHits, int count,
-                           S& sampler, Vec2i pixel, int firstIndex,
-                           const IntegratorSettings& settings, PathCounters& counters, Vec3f* L) {
-    static_assert(kPacketWidth <= kBatchLanes, "a camera packet fills at most one batch");
+void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* found,
+                           SurfaceInteraction* si, int count, S& sampler, Vec2i pixel,
+                           int firstIndex, const IntegratorSettings& settings,
+                           PathCounters& counters, Vec3f* L) {
+    static_assert(kPacketWidth == kBatchLanes, "a camera packet fills one batch");
     const LightSet& lights = scene.lights();
     // One area light sampled by area: the kernel samples it; otherwise each
     // lane's light sample is drawn here, one at a time.
     const AreaLight* onlyLight = lights.onlyAreaLight();
-    Vec3f beta[kBatchLanes], origin[kBatchLanes], dir[kBatchLanes];
-    Vec3f prevPoint[kBatchLanes], prevNormal[kBatchLanes];
+    // Path k's state. Its vertex at the current depth is in si[k] (found[k]:
+    // the ray that looked for it hit); Lambertian scenes have no specular
+    // bounce, so only the camera ray's emission is unweighted.
+    Vec3f beta[kBatchLanes], dir[kBatchLanes], prevPoint[kBatchLanes], prevNormal[kBatchLanes];
     float prevBsdfPdf[kBatchLanes] = {};
-    bool alive[kBatchLanes] = {}, found[kBatchLanes];
-    SurfaceInteraction si[kBatchLanes];
-    for (int k = 0; k < count; ++k) {
-        L[k] = Vec3f(0.0f), beta[k] = Vec3f(1.0f), origin[k] = eye, dir[k] = dirs[k];
-        alive[k] = true, found[k] = cameraFound[k], si[k] = cameraHits[k];
-    }
+    bool alive[kBatchLanes] = {};
+    for (int k = 0; k < count; ++k)
+        L[k] = Vec3f(0.0f), beta[k] = Vec3f(1.0f), dir[k] = dirs[k], alive[k] = true;
     DiffuseBatchInput in{};
-    DiffuseBatchOutput out;
+    DiffuseBatchOutput out{};  // lanes past the live ones go to Embree too, masked
     for (int depth = 0;; ++depth) {
         // The live paths' vertices go to consecutive slots, so that a
         // packet whose paths have mostly ended shades one half, not two.
         int lane[kBatchLanes], live = 0;
         for (int k = 0; k < count; ++k) {
             if (!alive[k]) continue;
-            alive[k] =
-                startBatchVertex(scene, depth, settings, counters, origin[k], dir[k], found[k],
-                                 si[k], beta[k], prevBsdfPdf[k], prevPoint[k], prevNormal[k], L[k]);
+            addEmission(lights, found[k], si[k], dir[k], beta[k], depth == 0, prevBsdfPdf[k],
+                        prevPoint[k], prevNormal[k], L[k]);
+            alive[k] = found[k] && depth != settings.maxDepth;
             if (!alive[k]) continue;
             VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
             const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
@@ -286,17 +269,19 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
         }
         if (live == 0) return;
         shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
+
+        bool blocked[kBatchLanes];
+        scene.occludedLanes({out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax,
+                             out.shadow, live},
+                            blocked);
+        int continues[kBatchLanes] = {};
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
-            const Vec3f direct =
-                out.shadow[j] ? traceShadowRay(scene,
-                                               {{out.sox[j], out.soy[j], out.soz[j]},
-                                                {out.sdx[j], out.sdy[j], out.sdz[j]},
-                                                out.shadowTMax[j],
-                                                {out.directR[j], out.directG[j], out.directB[j]}},
-                                               counters)
-                              : Vec3f(0.0f);
-            L[k] += beta[k] * direct;
+            if (out.shadow[j]) {
+                ++counters.shadowRays;
+                if (!blocked[j])
+                    L[k] += beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
+            }
             if (!out.bounce[j]) {
                 alive[k] = false;
                 continue;
@@ -305,11 +290,16 @@ void estimateRadianceBatch(const RenderScene& scene, Vec3f eye, const Vec3f* dir
             prevBsdfPdf[k] = out.pdf[j];
             prevPoint[k] = si[k].p;
             prevNormal[k] = si[k].ns;
-            origin[k] = {out.ox[j], out.oy[j], out.oz[j]};
             dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
             VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
             alive[k] = pathContinues(settings, depth, draws, beta[k]);
+            continues[j] = alive[k];
+            counters.rays += uint64_t(alive[k]);
         }
+
+        scene.intersectLanes(
+            {out.ox, out.oy, out.oz, out.wx, out.wy, out.wz, nullptr, continues, live}, lane, si,
+            found);
     }
 }
 

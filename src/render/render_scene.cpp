@@ -55,6 +55,20 @@ void RenderScene::intersectPacket(Vec3f o, const Vec3f* d, int count, SurfaceInt
         if (found[k]) fillInteraction(o, d[k], hits[k], &si[k]);
 }
 
+void RenderScene::intersectLanes(const RayLanes& rays, const int* to, SurfaceInteraction* si,
+                                 bool* found) const {
+    RayHit hits[kPacketWidth];
+    bool laneFound[kPacketWidth];
+    accel_->intersectLanes(rays, hits, laneFound);
+    for (int k = 0; k < rays.count; ++k) {
+        if (!rays.active[k]) continue;
+        found[to[k]] = laneFound[k];
+        if (laneFound[k])
+            fillInteraction({rays.ox[k], rays.oy[k], rays.oz[k]},
+                            {rays.dx[k], rays.dy[k], rays.dz[k]}, hits[k], &si[to[k]]);
+    }
+}
+
 void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
                                   SurfaceInteraction* si) const {
     si->p = o + d * hit.t;

@@ -34,6 +34,15 @@ class RenderScene {
     // (the camera's), traced together; found[k] is false where ray k escapes.
     void intersectPacket(Vec3f o, const Vec3f* d, int count, SurfaceInteraction* si,
                          bool* found) const;
+    // Rays of any origins, traced as one packet (EmbreeAccel::intersectLanes,
+    // occludedLanes). Active lane k's answer goes to found[to[k]] and, on a
+    // hit, si[to[k]] (the batched integrator's path of that lane); blocked[k]
+    // is per lane, false where inactive.
+    void intersectLanes(const RayLanes& rays, const int* to, SurfaceInteraction* si,
+                        bool* found) const;
+    void occludedLanes(const RayLanes& rays, bool* blocked) const {
+        accel_->occludedLanes(rays, blocked);
+    }
     // Every ray traced from now on is also recorded (null stops recording).
     void setRayRecorder(RayRecorder* recorder) { accel_->setRecorder(recorder); }
     const EmbreeAccel& accel() const { return *accel_; }

@@ -85,8 +85,8 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
         result.counters.dimensions += 2 * uint64_t(count);
         Vec3f radiance[kPacketWidth];
         if (integrator.batchDiffusePaths && scene.batchesDiffusePaths())
-            estimateRadianceBatch(scene, camera.eye(), dirs, found, first, count, sampler, pixel,
-                                  i0, integrator, result.counters, radiance);
+            estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
+                                  result.counters, radiance);
         else
             for (int k = 0; k < count; ++k)
                 radiance[k] = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k],

@@ -1,5 +1,6 @@
 #include "scene/embree_accel.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -113,7 +114,6 @@ bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
     hit->primId = rh.hit.primID;
     hit->u = rh.hit.u;
     hit->v = rh.hit.v;
-    hit->ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
     return true;
 }
 
@@ -173,8 +173,77 @@ void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hi
         hit.primId = rh.hit.primID[k];
         hit.u = rh.hit.u[k];
         hit.v = rh.hit.v[k];
-        hit.ng = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
     }
+}
+
+namespace {
+
+// Lanes of `rays` into an Embree packet (RTCRay8, or RTCRayHit8's ray); the
+// valid mask marks the active ones. Whole arrays are copied, inactive lanes
+// too (Embree ignores them): eight-float moves, no branch per lane.
+template <typename Ray8>
+void setPacketLanes(const RayLanes& rays, Ray8& ray, int* valid) {
+    constexpr size_t kBytes = sizeof(float) * kPacketWidth;
+    std::memcpy(ray.org_x, rays.ox, kBytes), std::memcpy(ray.org_y, rays.oy, kBytes);
+    std::memcpy(ray.org_z, rays.oz, kBytes), std::memcpy(ray.dir_x, rays.dx, kBytes);
+    std::memcpy(ray.dir_y, rays.dy, kBytes), std::memcpy(ray.dir_z, rays.dz, kBytes);
+    if (rays.tMax)
+        std::memcpy(ray.tfar, rays.tMax, kBytes);
+    else
+        std::fill_n(ray.tfar, kPacketWidth, std::numeric_limits<float>::infinity());
+    for (int k = 0; k < kPacketWidth; ++k) {
+        valid[k] = -int(k < rays.count) & -int(rays.active[k] != 0);
+        ray.tnear[k] = 0;
+        ray.time[k] = 0;
+        ray.mask[k] = 0xFFFFFFFFu;
+        ray.id[k] = unsigned(k);
+        ray.flags[k] = 0;
+    }
+}
+
+}  // namespace
+
+void EmbreeAccel::intersectLanes(const RayLanes& rays, RayHit* hits, bool* found) const {
+    alignas(32) int valid[kPacketWidth];
+    alignas(32) RTCRayHit8 rh;
+    setPacketLanes(rays, rh.ray, valid);
+    for (int k = 0; k < kPacketWidth; ++k) {
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        if (valid[k] && recorder_)
+            recorder_->record({rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]},
+                              {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]}, rh.ray.tfar[k],
+                              false);
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect8(valid, scene_, &context, &rh);
+    for (int k = 0; k < rays.count; ++k) {
+        found[k] = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        if (!found[k]) continue;
+        RayHit& hit = hits[k];
+        hit.t = rh.ray.tfar[k];
+        hit.geomId = rh.hit.geomID[k];
+        hit.primId = rh.hit.primID[k];
+        hit.u = rh.hit.u[k];
+        hit.v = rh.hit.v[k];
+    }
+}
+
+void EmbreeAccel::occludedLanes(const RayLanes& rays, bool* blocked) const {
+    alignas(32) int valid[kPacketWidth];
+    alignas(32) RTCRay8 ray;
+    setPacketLanes(rays, ray, valid);
+    if (recorder_)
+        for (int k = 0; k < kPacketWidth; ++k)
+            if (valid[k])
+                recorder_->record({ray.org_x[k], ray.org_y[k], ray.org_z[k]},
+                                  {ray.dir_x[k], ray.dir_y[k], ray.dir_z[k]}, ray.tfar[k], true);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded8(valid, scene_, &context, &ray);
+    // Embree sets tfar to −inf where a ray is blocked.
+    for (int k = 0; k < rays.count; ++k) blocked[k] = valid[k] && ray.tfar[k] < 0;
 }
 
 }  // namespace pathlab

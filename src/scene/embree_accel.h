@@ -16,12 +16,12 @@
 
 namespace pathlab {
 
+// A closest hit, written by a query only where it reports one (no default
+// values: a packet's eight would be zeroed on every call for nothing).
 struct RayHit {
-    float t = 0;
-    unsigned geomId = RTC_INVALID_GEOMETRY_ID;
-    unsigned primId = 0;
-    float u = 0, v = 0;  // barycentrics of vertices 1 and 2 (triangles)
-    Vec3f ng;            // Embree's unnormalised geometric normal (used for spheres)
+    float t;
+    unsigned geomId, primId;
+    float u, v;  // barycentrics of vertices 1 and 2 (triangles)
 };
 
 // A ray as the renderer asked for it: closest hit, or any hit (shadow ray).
@@ -49,6 +49,18 @@ class RayRecorder {
 // Width of the packets used for coherent rays (camera rays of one pixel).
 constexpr int kPacketWidth = 8;
 
+// Up to kPacketWidth rays with their own origins, as structure of arrays (the
+// layout of Embree's packets and of the batched shading's output). Each array
+// holds kPacketWidth values, all readable; lane k < count is traced where
+// active[k] is nonzero, for t in (0, tMax[k]) — (0, ∞) when tMax is null.
+struct RayLanes {
+    const float *ox, *oy, *oz;
+    const float *dx, *dy, *dz;
+    const float* tMax;
+    const int* active;
+    int count;  // lanes 0 … count − 1
+};
+
 class EmbreeAccel {
   public:
     explicit EmbreeAccel(const SceneDescription& scene);
@@ -63,6 +75,10 @@ class EmbreeAccel {
     // Closest hits of up to kPacketWidth rays from one origin, traced as one
     // Embree packet (rtcIntersect8); found[k] tells whether ray k hit.
     void intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hits, bool* found) const;
+    // The same for rays of any origins and directions (rtcIntersect8 and
+    // rtcOccluded8): found[k] / blocked[k] for the active lanes.
+    void intersectLanes(const RayLanes& rays, RayHit* hits, bool* found) const;
+    void occludedLanes(const RayLanes& rays, bool* blocked) const;
 
     // While set (not null), every query is also handed to the recorder.
     void setRecorder(RayRecorder* recorder) { recorder_ = recorder; }
