@@ -147,8 +147,6 @@ void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hi
         const bool active = k < count;
         valid[k] = active ? -1 : 0;
         const Vec3f dir = active ? d[k] : Vec3f(0, 0, 1);
-        if (active && recorder_)
-            recorder_->record(o, dir, std::numeric_limits<float>::infinity(), false);
         rh.ray.org_x[k] = o.x, rh.ray.org_y[k] = o.y, rh.ray.org_z[k] = o.z;
         rh.ray.dir_x[k] = dir.x, rh.ray.dir_y[k] = dir.y, rh.ray.dir_z[k] = dir.z;
         rh.ray.tnear[k] = 0;
@@ -157,15 +155,26 @@ void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hi
         rh.ray.mask[k] = 0xFFFFFFFFu;
         rh.ray.id[k] = unsigned(k);
         rh.ray.flags[k] = 0;
+    }
+    intersect8(rh, valid, count, RTC_INTERSECT_CONTEXT_FLAG_COHERENT, hits, found);
+}
+
+void EmbreeAccel::intersect8(RTCRayHit8& rh, const int* valid, int count,
+                             RTCIntersectContextFlags flags, RayHit* hits, bool* found) const {
+    for (int k = 0; k < kPacketWidth; ++k) {
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        if (valid[k] && recorder_)
+            recorder_->record({rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]},
+                              {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]}, rh.ray.tfar[k],
+                              false);
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.flags = flags;
     rtcIntersect8(valid, scene_, &context, &rh);
     for (int k = 0; k < count; ++k) {
-        found[k] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        found[k] = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
         if (!found[k]) continue;
         RayHit& hit = hits[k];
         hit.t = rh.ray.tfar[k];
@@ -207,27 +216,7 @@ void EmbreeAccel::intersectLanes(const RayLanes& rays, RayHit* hits, bool* found
     alignas(32) int valid[kPacketWidth];
     alignas(32) RTCRayHit8 rh;
     setPacketLanes(rays, rh.ray, valid);
-    for (int k = 0; k < kPacketWidth; ++k) {
-        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        if (valid[k] && recorder_)
-            recorder_->record({rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]},
-                              {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]}, rh.ray.tfar[k],
-                              false);
-    }
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect8(valid, scene_, &context, &rh);
-    for (int k = 0; k < rays.count; ++k) {
-        found[k] = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-        if (!found[k]) continue;
-        RayHit& hit = hits[k];
-        hit.t = rh.ray.tfar[k];
-        hit.geomId = rh.hit.geomID[k];
-        hit.primId = rh.hit.primID[k];
-        hit.u = rh.hit.u[k];
-        hit.v = rh.hit.v[k];
-    }
+    intersect8(rh, valid, rays.count, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, hits, found);
 }
 
 void EmbreeAccel::occludedLanes(const RayLanes& rays, bool* blocked) const {

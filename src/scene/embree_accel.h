@@ -89,6 +89,11 @@ class EmbreeAccel {
     Vec3f boundsMax() const { return boundsMax_; }
 
   private:
+    // Traces a filled packet (the hits' IDs are reset here, the rays recorded)
+    // and reads back lanes 0 … count − 1.
+    void intersect8(RTCRayHit8& rh, const int* valid, int count, RTCIntersectContextFlags flags,
+                    RayHit* hits, bool* found) const;
+
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     unsigned sphereGeomId_ = RTC_INVALID_GEOMETRY_ID;
