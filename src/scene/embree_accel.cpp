@@ -135,6 +135,51 @@ bool EmbreeAccel::occluded(Vec3f o, Vec3f d, float tMax) const {
     return ray.tfar < 0;
 }
 
+namespace {
+
+// The fields every packet lane gets whatever its ray: no near distance, time
+// 0, every geometry, its lane as ID.
+template <typename Ray8>
+void setLaneDefaults(Ray8& ray) {
+    for (int k = 0; k < kPacketWidth; ++k) {
+        ray.tnear[k] = 0;
+        ray.time[k] = 0;
+        ray.mask[k] = 0xFFFFFFFFu;
+        ray.id[k] = unsigned(k);
+        ray.flags[k] = 0;
+    }
+}
+
+// Lanes of `rays` into an Embree packet (RTCRay8, or RTCRayHit8's ray); the
+// valid mask marks the active ones. Whole arrays are copied, inactive lanes
+// too (Embree ignores them): eight-float moves, no branch per lane.
+template <typename Ray8>
+void setPacketLanes(const RayLanes& rays, Ray8& ray, int* valid) {
+    constexpr size_t kBytes = sizeof(float) * kPacketWidth;
+    std::memcpy(ray.org_x, rays.ox, kBytes), std::memcpy(ray.org_y, rays.oy, kBytes);
+    std::memcpy(ray.org_z, rays.oz, kBytes), std::memcpy(ray.dir_x, rays.dx, kBytes);
+    std::memcpy(ray.dir_y, rays.dy, kBytes), std::memcpy(ray.dir_z, rays.dz, kBytes);
+    if (rays.tMax)
+        std::memcpy(ray.tfar, rays.tMax, kBytes);
+    else
+        std::fill_n(ray.tfar, kPacketWidth, std::numeric_limits<float>::infinity());
+    for (int k = 0; k < kPacketWidth; ++k)
+        valid[k] = -int(k < rays.count) & -int(rays.active[k] != 0);
+    setLaneDefaults(ray);
+}
+
+// A packet's active lanes to the recorder, if there is one.
+template <typename Ray8>
+void recordLanes(RayRecorder* recorder, const Ray8& ray, const int* valid, bool shadow) {
+    if (!recorder) return;
+    for (int k = 0; k < kPacketWidth; ++k)
+        if (valid[k])
+            recorder->record({ray.org_x[k], ray.org_y[k], ray.org_z[k]},
+                             {ray.dir_x[k], ray.dir_y[k], ray.dir_z[k]}, ray.tfar[k], shadow);
+}
+
+}  // namespace
+
 void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hits,
                                   bool* found) const {
     if (count == 1) {
@@ -149,13 +194,9 @@ void EmbreeAccel::intersectPacket(Vec3f o, const Vec3f* d, int count, RayHit* hi
         const Vec3f dir = active ? d[k] : Vec3f(0, 0, 1);
         rh.ray.org_x[k] = o.x, rh.ray.org_y[k] = o.y, rh.ray.org_z[k] = o.z;
         rh.ray.dir_x[k] = dir.x, rh.ray.dir_y[k] = dir.y, rh.ray.dir_z[k] = dir.z;
-        rh.ray.tnear[k] = 0;
         rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-        rh.ray.time[k] = 0;
-        rh.ray.mask[k] = 0xFFFFFFFFu;
-        rh.ray.id[k] = unsigned(k);
-        rh.ray.flags[k] = 0;
     }
+    setLaneDefaults(rh.ray);
     intersect8(rh, valid, count, RTC_INTERSECT_CONTEXT_FLAG_COHERENT, hits, found);
 }
 
@@ -164,11 +205,8 @@ void EmbreeAccel::intersect8(RTCRayHit8& rh, const int* valid, int count,
     for (int k = 0; k < kPacketWidth; ++k) {
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        if (valid[k] && recorder_)
-            recorder_->record({rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]},
-                              {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]}, rh.ray.tfar[k],
-                              false);
     }
+    recordLanes(recorder_, rh.ray, valid, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = flags;
@@ -185,33 +223,6 @@ void EmbreeAccel::intersect8(RTCRayHit8& rh, const int* valid, int count,
     }
 }
 
-namespace {
-
-// Lanes of `rays` into an Embree packet (RTCRay8, or RTCRayHit8's ray); the
-// valid mask marks the active ones. Whole arrays are copied, inactive lanes
-// too (Embree ignores them): eight-float moves, no branch per lane.
-template <typename Ray8>
-void setPacketLanes(const RayLanes& rays, Ray8& ray, int* valid) {
-    constexpr size_t kBytes = sizeof(float) * kPacketWidth;
-    std::memcpy(ray.org_x, rays.ox, kBytes), std::memcpy(ray.org_y, rays.oy, kBytes);
-    std::memcpy(ray.org_z, rays.oz, kBytes), std::memcpy(ray.dir_x, rays.dx, kBytes);
-    std::memcpy(ray.dir_y, rays.dy, kBytes), std::memcpy(ray.dir_z, rays.dz, kBytes);
-    if (rays.tMax)
-        std::memcpy(ray.tfar, rays.tMax, kBytes);
-    else
-        std::fill_n(ray.tfar, kPacketWidth, std::numeric_limits<float>::infinity());
-    for (int k = 0; k < kPacketWidth; ++k) {
-        valid[k] = -int(k < rays.count) & -int(rays.active[k] != 0);
-        ray.tnear[k] = 0;
-        ray.time[k] = 0;
-        ray.mask[k] = 0xFFFFFFFFu;
-        ray.id[k] = unsigned(k);
-        ray.flags[k] = 0;
-    }
-}
-
-}  // namespace
-
 void EmbreeAccel::intersectLanes(const RayLanes& rays, RayHit* hits, bool* found) const {
     alignas(32) int valid[kPacketWidth];
     alignas(32) RTCRayHit8 rh;
@@ -223,11 +234,7 @@ void EmbreeAccel::occludedLanes(const RayLanes& rays, bool* blocked) const {
     alignas(32) int valid[kPacketWidth];
     alignas(32) RTCRay8 ray;
     setPacketLanes(rays, ray, valid);
-    if (recorder_)
-        for (int k = 0; k < kPacketWidth; ++k)
-            if (valid[k])
-                recorder_->record({ray.org_x[k], ray.org_y[k], ray.org_z[k]},
-                                  {ray.dir_x[k], ray.dir_y[k], ray.dir_z[k]}, ray.tfar[k], true);
+    recordLanes(recorder_, ray, valid, true);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded8(valid, scene_, &context, &ray);

@@ -46,7 +46,8 @@ class RayRecorder {
     tbb::enumerable_thread_specific<std::vector<RecordedRay>> perThread_;
 };
 
-// Width of the packets used for coherent rays (camera rays of one pixel).
+// Width of the ray packets: a pixel's camera rays, and the batched paths'
+// shadow and bounce rays at one depth.
 constexpr int kPacketWidth = 8;
 
 // Up to kPacketWidth rays with their own origins, as structure of arrays (the
