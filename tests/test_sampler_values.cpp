@@ -334,5 +334,45 @@ TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
             << "draw " << i;
 }
 
+TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
+    // drawLanes1D/2D, which the batched integrator uses, against
+    // startPixelSample + get1D/get2D of a second copy of the sampler: live
+    // lanes of a camera packet (ascending subsets of its samples), pixels
+    // revisited, dimensions past the per-pixel caches, spp not a power of two.
+    for (const std::string& name : allSamplerNames()) {
+        for (int spp : {64, 24}) {
+            const SamplerConfig config{spp, 7, {32, 16}};
+            AnySampler lanes = makeSampler(name, config), single = makeSampler(name, config);
+            std::mt19937 rng(spp);
+            std::visit(
+                [&](auto& a) {
+                    auto& b = std::get<std::decay_t<decltype(a)>>(single);
+                    for (int round = 0; round < 300; ++round) {
+                        const Vec2i pixel{int(rng() % 3), int(rng() % 2) + 5};
+                        const int first = int(rng() % unsigned(spp / 8)) * 8;
+                        int indices[kCameraPacketSamples], count = 0;
+                        for (int k = 0; k < kCameraPacketSamples; ++k)
+                            if (rng() % 4 != 0) indices[count++] = first + k;
+                        const int depth = int(rng() % 10);
+                        const int dim = dims::bounceBase(depth) + int(rng() % 7);
+                        float x[kCameraPacketSamples];
+                        Vec2f xy[kCameraPacketSamples];
+                        drawLanes1D(a, pixel, indices, count, dim, x);
+                        drawLanes2D(a, pixel, indices, count, dim, xy);
+                        for (int j = 0; j < count; ++j) {
+                            b.startPixelSample(pixel, indices[j], dim);
+                            EXPECT_EQ(x[j], b.get1D()) << name << " dim " << dim;
+                            b.startPixelSample(pixel, indices[j], dim);
+                            const Vec2f expected = b.get2D();
+                            EXPECT_EQ(xy[j].x, expected.x) << name << " dim " << dim;
+                            EXPECT_EQ(xy[j].y, expected.y) << name << " dim " << dim;
+                        }
+                    }
+                },
+                lanes);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace pathlab

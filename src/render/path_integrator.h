@@ -110,15 +110,22 @@ inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& 
     return d ? traceShadowRay(scene, *d, counters) : Vec3f(0.0f);
 }
 
+// Russian roulette's probability of ending the path after vertex `depth`
+// with throughput beta (pbrt-v4's rule); 0 where roulette does not play.
+inline float terminationProbability(const IntegratorSettings& settings, int depth, Vec3f beta) {
+    if (!settings.russianRoulette || depth < settings.rouletteDepth) return 0;
+    return std::max(0.0f, 1 - maxComponent(beta));
+}
+
 // After a vertex's bounce: Russian roulette, from vertex rouletteDepth on
 // (its number drawn only when it can end the path), then the end of a path
 // whose throughput is zero. False when the path ends.
 template <Sampler S>
 bool pathContinues(const IntegratorSettings& settings, int depth, VertexDimensions<S>& draws,
                    Vec3f& beta) {
-    if (settings.russianRoulette && depth >= settings.rouletteDepth) {
-        const float q = std::max(0.0f, 1 - maxComponent(beta));
-        if (q > 0 && draws.get1D(dims::kRoulette) < q) return false;
+    const float q = terminationProbability(settings, depth, beta);
+    if (q > 0) {
+        if (draws.get1D(dims::kRoulette) < q) return false;
         beta *= 1 / (1 - q);
     }
     return !isBlack(beta);
@@ -251,30 +258,42 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
     for (int depth = 0;; ++depth) {
         // The live paths' vertices go to consecutive slots, so that a
         // packet whose paths have mostly ended shades one half, not two.
-        int lane[kBatchLanes], live = 0;
+        int lane[kBatchLanes], index[kBatchLanes], live = 0;
         for (int k = 0; k < count; ++k) {
             if (!alive[k]) continue;
             addEmission(lights, found[k], si[k], dir[k], beta[k], depth == 0, prevBsdfPdf[k],
                         prevPoint[k], prevNormal[k], L[k]);
             alive[k] = found[k] && depth != settings.maxDepth;
-            if (!alive[k]) continue;
-            VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
-            const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
-            const Vec2f uLight = draws.get2D(dims::kLightPoint);
-            setBatchLane(in, live, si[k], dir[k], scene.bsdfAt(si[k]).albedo(), uLight,
-                         draws.get2D(dims::kBsdfDirection));
-            if (!onlyLight)
-                setBatchLightSample(in, live, lights.sample(si[k].p, si[k].ns, uChoice, uLight));
-            lane[live++] = k;
+            if (alive[k]) lane[live] = k, index[live++] = firstIndex + k;
         }
         if (live == 0) return;
+        // The live paths' dimensions, one dimension for all of them at a time.
+        const int base = dims::bounceBase(depth);
+        float uChoice[kBatchLanes] = {};
+        Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
+        if (lights.choiceUsesSample()) {
+            drawLanes1D(sampler, pixel, index, live, base + dims::kLightChoice, uChoice);
+            counters.dimensions += uint64_t(live);
+        }
+        drawLanes2D(sampler, pixel, index, live, base + dims::kLightPoint, uLight);
+        drawLanes2D(sampler, pixel, index, live, base + dims::kBsdfDirection, uDirection);
+        counters.dimensions += 4 * uint64_t(live);
+        for (int j = 0; j < live; ++j) {
+            const int k = lane[j];
+            setBatchLane(in, j, si[k], dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],
+                         uDirection[j]);
+            if (!onlyLight)
+                setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));
+        }
         shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
 
         bool blocked[kBatchLanes];
         scene.occludedLanes({out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax,
                              out.shadow, live},
                             blocked);
-        int continues[kBatchLanes] = {};
+        // Russian roulette's numbers are drawn only for the paths it can end.
+        float q[kBatchLanes] = {}, uRoulette[kBatchLanes] = {};
+        int playing[kBatchLanes], playingIndex[kBatchLanes], players = 0;
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
             if (out.shadow[j]) {
@@ -282,17 +301,31 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
                 if (!blocked[j])
                     L[k] += beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
             }
-            if (!out.bounce[j]) {
-                alive[k] = false;
-                continue;
-            }
+            if (!out.bounce[j]) continue;
             beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
             prevBsdfPdf[k] = out.pdf[j];
             prevPoint[k] = si[k].p;
             prevNormal[k] = si[k].ns;
             dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
-            VertexDimensions<S> draws(sampler, pixel, firstIndex + k, depth, counters);
-            alive[k] = pathContinues(settings, depth, draws, beta[k]);
+            q[j] = terminationProbability(settings, depth, beta[k]);
+            if (q[j] > 0) playing[players] = j, playingIndex[players++] = firstIndex + k;
+        }
+        if (players > 0) {
+            float u[kBatchLanes];
+            drawLanes1D(sampler, pixel, playingIndex, players, base + dims::kRoulette, u);
+            counters.dimensions += uint64_t(players);
+            for (int n = 0; n < players; ++n) uRoulette[playing[n]] = u[n];
+        }
+        int continues[kBatchLanes] = {};
+        for (int j = 0; j < live; ++j) {
+            const int k = lane[j];
+            alive[k] = out.bounce[j] != 0;
+            if (!alive[k]) continue;
+            if (q[j] > 0) {
+                alive[k] = uRoulette[j] >= q[j];
+                beta[k] *= 1 / (1 - q[j]);
+            }
+            alive[k] = alive[k] && !isBlack(beta[k]);
             continues[j] = alive[k];
             counters.rays += uint64_t(alive[k]);
         }

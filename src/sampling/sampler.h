@@ -75,4 +75,28 @@ concept Sampler = std::copy_constructible<S> && requires(S s, Vec2i p, int i) {
     { s.getPixel2D() } -> std::same_as<Vec2f>;
 };
 
+// Lane draws, for the batched integrator: dimension `dim` (1D), or `dim` and
+// `dim` + 1 (2D), of samples indices[0 … count) of one pixel, count ≤
+// kCameraPacketSamples. A sampler whose work for a dimension is shared by a
+// pixel's samples (a scramble's seed, a permutation's hash) or runs side by
+// side in SIMD lanes provides get1DLanes / get2DLanes; the others are
+// repositioned sample by sample. Either way out[j] is, bit for bit, what
+// startPixelSample(pixel, indices[j], dim) then get1D() / get2D() gives.
+template <Sampler S>
+void drawLanes1D(S& s, Vec2i pixel, const int* indices, int count, int dim, float* out) {
+    if constexpr (requires { s.get1DLanes(pixel, indices, count, dim, out); }) {
+        s.get1DLanes(pixel, indices, count, dim, out);
+    } else {
+        for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get1D();
+    }
+}
+template <Sampler S>
+void drawLanes2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2f* out) {
+    if constexpr (requires { s.get2DLanes(pixel, indices, count, dim, out); }) {
+        s.get2DLanes(pixel, indices, count, dim, out);
+    } else {
+        for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
+    }
+}
+
 }  // namespace pathlab

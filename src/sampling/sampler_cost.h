@@ -2,10 +2,10 @@
 // the Cornell box: the camera rays of a packet of kCameraPacketSamples samples
 // first (startPixelSample at dimension 0, getPixel2D each), then the packet's
 // paths together, as estimateRadianceBatch traces them: at each vertex depth,
-// every path's light point (dims::kLightPoint) and BSDF direction
-// (dims::kBsdfDirection, a second startPixelSample since the lobe dimension
-// between them is skipped), then — from the third vertex on — every path's
-// Russian roulette (dims::kRoulette, pbrt-v4's default).
+// the light point (dims::kLightPoint) of every path, then their BSDF
+// directions (dims::kBsdfDirection), then — from the third vertex on — their
+// Russian roulette (dims::kRoulette, pbrt-v4's default), each dimension for
+// all paths at once (drawLanes1D / drawLanes2D).
 // Shared by the Google Benchmark microbenchmarks and `pathlab bench --samplers`,
 // which multiplies it by the dimensions a frame draws.
 #pragma once
@@ -35,20 +35,18 @@ float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int dep
         const Vec2f p = s.getPixel2D();
         acc += p.x + p.y;
     }
+    int indices[kCameraPacketSamples];
+    for (int k = 0; k < count; ++k) indices[k] = firstIndex + k;
     for (int d = 0; d < depth; ++d) {
         const int base = dims::bounceBase(d);
-        for (int k = 0; k < count; ++k) {
-            s.startPixelSample(pixel, firstIndex + k, base + dims::kLightPoint);
-            const Vec2f light = s.get2D();
-            s.startPixelSample(pixel, firstIndex + k, base + dims::kBsdfDirection);
-            const Vec2f dir = s.get2D();
-            acc += light.x + light.y + dir.x + dir.y;
-        }
+        Vec2f light[kCameraPacketSamples], dir[kCameraPacketSamples];
+        drawLanes2D(s, pixel, indices, count, base + dims::kLightPoint, light);
+        drawLanes2D(s, pixel, indices, count, base + dims::kBsdfDirection, dir);
+        for (int k = 0; k < count; ++k) acc += light[k].x + light[k].y + dir[k].x + dir[k].y;
         if (d < kCostRouletteDepth) continue;
-        for (int k = 0; k < count; ++k) {
-            s.startPixelSample(pixel, firstIndex + k, base + dims::kRoulette);
-            acc += s.get1D();
-        }
+        float roulette[kCameraPacketSamples];
+        drawLanes1D(s, pixel, indices, count, base + dims::kRoulette, roulette);
+        for (int k = 0; k < count; ++k) acc += roulette[k];
     }
     return acc;
 }
