@@ -177,6 +177,15 @@ const uint32_t* sobolMatrices();
     a ^= (a & 0xffffffff00000000ULL) >> 32;
     return a;
 }
+// The same transform of a 32-bit index (its last step only moves bits above 32).
+[[gnu::always_inline]] constexpr uint32_t sobolSupersetTransform32(uint32_t a) {
+    a ^= (a & 0xaaaaaaaau) >> 1;
+    a ^= (a & 0xccccccccu) >> 2;
+    a ^= (a & 0xf0f0f0f0u) >> 4;
+    a ^= (a & 0xff00ff00u) >> 8;
+    a ^= (a & 0xffff0000u) >> 16;
+    return a;
+}
 [[gnu::always_inline]] inline uint32_t sobolSecondDimension(uint64_t a) {
     return reverseBits32(static_cast<uint32_t>(sobolSupersetTransform(a)));
 }

@@ -82,12 +82,20 @@ concept Sampler = std::copy_constructible<S> && requires(S s, Vec2i p, int i) {
 // side in SIMD lanes provides get1DLanes / get2DLanes; the others are
 // repositioned sample by sample. Either way out[j] is, bit for bit, what
 // startPixelSample(pixel, indices[j], dim) then get1D() / get2D() gives.
+// The lane draws' indices as a full vector of kCameraPacketSamples unsigned
+// lanes (those past count are 0), so that a loop over them is a SIMD loop.
+inline void padLanes(const int* indices, int count, uint32_t* lanes) {
+    for (int j = 0; j < kCameraPacketSamples; ++j) lanes[j] = 0;
+    for (int j = 0; j < count; ++j) lanes[j] = static_cast<uint32_t>(indices[j]);
+}
+
 template <Sampler S>
 void drawLanes1D(S& s, Vec2i pixel, const int* indices, int count, int dim, float* out) {
     if constexpr (requires { s.get1DLanes(pixel, indices, count, dim, out); }) {
         s.get1DLanes(pixel, indices, count, dim, out);
     } else {
-        for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get1D();
+        for (int j = 0; j < count; ++j)
+            s.startPixelSample(pixel, indices[j], dim), out[j] = s.get1D();
     }
 }
 template <Sampler S>
@@ -95,7 +103,8 @@ void drawLanes2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2
     if constexpr (requires { s.get2DLanes(pixel, indices, count, dim, out); }) {
         s.get2DLanes(pixel, indices, count, dim, out);
     } else {
-        for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
+        for (int j = 0; j < count; ++j)
+            s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
     }
 }
 

@@ -41,6 +41,7 @@
 #include "sampling/lowdiscrepancy.h"
 #include "sampling/pixel_dimension_cache.h"
 #include "sampling/sampler.h"
+#include "sampling/scramble_lanes.h"
 
 namespace pathlab {
 
@@ -207,6 +208,29 @@ class OwenSobolSampler {
     static uint64_t pixelHash(Vec2i p, uint64_t seed) { return hashValues(p.x, p.y, seed); }
     Vec2f getPixel2D() { return get2D(); }
 
+    // Lane draws (sampler.h): the dimension's seeds once for all the lanes,
+    // the lanes' bit operations side by side (scramble_lanes.h).
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        startPixelSample(p, indices[0], dim);
+        const Seeds k = seeds(dim, 0x31, seeds1D_);
+        uint32_t index[kCameraPacketSamples];
+        padLanes(indices, count, index);
+        float x[kCameraPacketSamples];
+        owenSobolLanes1D(index, k.index, foldSeed(k.values), x);
+        for (int j = 0; j < count; ++j) out[j] = x[j];
+        dimension_ = dim + 1;
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        startPixelSample(p, indices[0], dim);
+        const Seeds k = seeds(dim, 0x32, seeds2D_);
+        uint32_t index[kCameraPacketSamples];
+        padLanes(indices, count, index);
+        float x[kCameraPacketSamples], y[kCameraPacketSamples];
+        owenSobolLanes2D(index, k.index, uint32_t(k.values), uint32_t(k.values >> 32), x, y);
+        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+        dimension_ = dim + 2;
+    }
+
   private:
     // h = mixBits(pixel hash, dimension, tag) scrambles the index (its low 32
     // bits) and mixBits(h) seeds the output scrambles.
@@ -290,21 +314,46 @@ class ZSobolSampler {
         }
         CachedDimension& c = cached(d);
         const uint64_t low = lowDigits(d, c);
-        // Sobol' dimension 1 is linear over GF(2) and the high and low index
-        // bits are disjoint, so its value is the cached high part XOR the
-        // low part; both are kept bit-reversed, as owenScramble wants them.
-        // The low part a byte at a time from tables: a loop over its set bits
-        // would end at an unpredictable count.
-        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
-                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
-                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
-        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
         const uint64_t xy =
             reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
-                              laineKarrasPermutation(reversed1, c.seeds2D[1]));
+                              laineKarrasPermutation(reversedSobol1(c, low), c.seeds2D[1]));
         return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
     }
     Vec2f getPixel2D() { return get2D(); }
+
+    // Lane draws (sampler.h): the lanes' permuted indices one by one (they
+    // share the dimension's cache and, mostly, its last tree node), then
+    // their Owen scrambles side by side (scramble_lanes.h).
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        if (dim >= kCachedDimensions) return drawEachLane1D(p, indices, count, dim, out);
+        startPixelSample(p, indices[0], dim);
+        CachedDimension& c = cached(dim);
+        uint32_t a[kCameraPacketSamples] = {};
+        for (int j = 0; j < count; ++j) {
+            mortonIndex_ = pixelMorton_ | uint64_t(indices[j]);
+            a[j] = uint32_t(c.highIndex | lowDigits(dim, c));
+        }
+        float x[kCameraPacketSamples];
+        laineKarrasLanes1D(a, c.seed1D, x);
+        for (int j = 0; j < count; ++j) out[j] = x[j];
+        dimension_ = dim + 1;
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        if (dim >= kCachedDimensions) return drawEachLane2D(p, indices, count, dim, out);
+        startPixelSample(p, indices[0], dim);
+        CachedDimension& c = cached(dim);
+        uint32_t a[kCameraPacketSamples] = {}, b[kCameraPacketSamples] = {};
+        for (int j = 0; j < count; ++j) {
+            mortonIndex_ = pixelMorton_ | uint64_t(indices[j]);
+            const uint64_t low = lowDigits(dim, c);
+            a[j] = uint32_t(c.highIndex | low);
+            b[j] = reversedSobol1(c, low);
+        }
+        float x[kCameraPacketSamples], y[kCameraPacketSamples];
+        laineKarrasLanes2D(a, b, c.seeds2D[0], c.seeds2D[1], x, y);
+        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+        dimension_ = dim + 2;
+    }
 
     // The permuted global index for the current pixel sample in `dimension`
     // (Ahmed & Wonka 2020, §4: random permutation of each base-4 digit chosen
@@ -321,6 +370,12 @@ class ZSobolSampler {
   private:
     // A path of depth 8 draws 58 dimensions; deeper ones are computed uncached.
     static constexpr int kCachedDimensions = 64;
+    void drawEachLane1D(Vec2i p, const int* indices, int count, int dim, float* out) {
+        for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
+    }
+    void drawEachLane2D(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
+    }
     struct CachedDimension {
         // Per dimension, for every pixel: the digit hashes' salt and the Owen seeds.
         uint64_t salt = 0;
@@ -337,6 +392,18 @@ class ZSobolSampler {
         uint64_t lastPrefix = 0;
         uint8_t lastPermutation = 0;
     };
+    // Sobol' dimension 1 of the permuted index highIndex | low, bit-reversed
+    // (as the Owen scramble wants it). It is linear over GF(2) and the high and
+    // low index bits are disjoint, so it is the cached high part XOR the low
+    // part's. The low part a byte at a time from tables: a loop over its set
+    // bits would end at an unpredictable count.
+    uint32_t reversedSobol1(const CachedDimension& c, uint64_t low) const {
+        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
+                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
+                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
+        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
+        return reversed1;
+    }
     CachedDimension& cached(int d) {
         CachedDimension& c = cache_[size_t(d)];
         if (!((cacheValid_ >> d) & 1)) {
