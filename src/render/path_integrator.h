@@ -271,13 +271,9 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
         const int base = dims::bounceBase(depth);
         float uChoice[kBatchLanes] = {};
         Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
-        if (lights.choiceUsesSample()) {
-            drawLanes1D(sampler, pixel, index, live, base + dims::kLightChoice, uChoice);
-            counters.dimensions += uint64_t(live);
-        }
-        drawLanes2D(sampler, pixel, index, live, base + dims::kLightPoint, uLight);
-        drawLanes2D(sampler, pixel, index, live, base + dims::kBsdfDirection, uDirection);
-        counters.dimensions += 4 * uint64_t(live);
+        const bool choice = lights.choiceUsesSample();
+        drawVertexLanes(sampler, pixel, index, live, base, choice, uChoice, uLight, uDirection);
+        counters.dimensions += uint64_t(live) * (choice ? 5 : 4);
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
             setBatchLane(in, j, si[k], dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],

@@ -75,13 +75,6 @@ concept Sampler = std::copy_constructible<S> && requires(S s, Vec2i p, int i) {
     { s.getPixel2D() } -> std::same_as<Vec2f>;
 };
 
-// Lane draws, for the batched integrator: dimension `dim` (1D), or `dim` and
-// `dim` + 1 (2D), of samples indices[0 … count) of one pixel, count ≤
-// kCameraPacketSamples. A sampler whose work for a dimension is shared by a
-// pixel's samples (a scramble's seed, a permutation's hash) or runs side by
-// side in SIMD lanes provides get1DLanes / get2DLanes; the others are
-// repositioned sample by sample. Either way out[j] is, bit for bit, what
-// startPixelSample(pixel, indices[j], dim) then get1D() / get2D() gives.
 // The lane draws' indices as a full vector of kCameraPacketSamples unsigned
 // lanes (those past count are 0), so that a loop over them is a SIMD loop.
 inline void padLanes(const int* indices, int count, uint32_t* lanes) {
@@ -89,9 +82,23 @@ inline void padLanes(const int* indices, int count, uint32_t* lanes) {
     for (int j = 0; j < count; ++j) lanes[j] = static_cast<uint32_t>(indices[j]);
 }
 
+// Does S draw lanes itself (get1DLanes / get2DLanes)?
+template <typename S>
+concept DrawsLanes = Sampler<S> && requires(S s, Vec2i p, const int* i, float* x, Vec2f* xy) {
+    s.get1DLanes(p, i, 0, 0, x);
+    s.get2DLanes(p, i, 0, 0, xy);
+};
+
+// Lane draws, for the batched integrator: dimension `dim` (1D), or `dim` and
+// `dim` + 1 (2D), of samples indices[0 … count) of one pixel, count ≤
+// kCameraPacketSamples. A sampler whose work for a dimension is shared by a
+// pixel's samples (a scramble's seed, a permutation's hash) or runs side by
+// side in SIMD lanes provides get1DLanes / get2DLanes; the others are
+// repositioned sample by sample. Either way out[j] is, bit for bit, what
+// startPixelSample(pixel, indices[j], dim) then get1D() / get2D() gives.
 template <Sampler S>
 void drawLanes1D(S& s, Vec2i pixel, const int* indices, int count, int dim, float* out) {
-    if constexpr (requires { s.get1DLanes(pixel, indices, count, dim, out); }) {
+    if constexpr (DrawsLanes<S>) {
         s.get1DLanes(pixel, indices, count, dim, out);
     } else {
         for (int j = 0; j < count; ++j)
@@ -100,11 +107,39 @@ void drawLanes1D(S& s, Vec2i pixel, const int* indices, int count, int dim, floa
 }
 template <Sampler S>
 void drawLanes2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2f* out) {
-    if constexpr (requires { s.get2DLanes(pixel, indices, count, dim, out); }) {
+    if constexpr (DrawsLanes<S>) {
         s.get2DLanes(pixel, indices, count, dim, out);
     } else {
         for (int j = 0; j < count; ++j)
             s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
+    }
+}
+
+// A path vertex's draws for the live paths of a batch (the paths' sample
+// indices): the light choice (when `choice`), the light point and the BSDF
+// direction of the vertex whose block starts at dimension `base`. A sampler
+// with lane draws draws each dimension for all the paths at once; the others
+// go path by path, so that each path is positioned once per vertex (the light
+// choice and point are consecutive dimensions), not once per dimension.
+template <Sampler S>
+void drawVertexLanes(S& s, Vec2i pixel, const int* indices, int count, int base, bool choice,
+                     float* uChoice, Vec2f* uLight, Vec2f* uDirection) {
+    if constexpr (DrawsLanes<S>) {
+        if (choice) drawLanes1D(s, pixel, indices, count, base + dims::kLightChoice, uChoice);
+        drawLanes2D(s, pixel, indices, count, base + dims::kLightPoint, uLight);
+        drawLanes2D(s, pixel, indices, count, base + dims::kBsdfDirection, uDirection);
+    } else {
+        for (int j = 0; j < count; ++j) {
+            if (choice) {
+                s.startPixelSample(pixel, indices[j], base + dims::kLightChoice);
+                uChoice[j] = s.get1D();
+            } else {
+                s.startPixelSample(pixel, indices[j], base + dims::kLightPoint);
+            }
+            uLight[j] = s.get2D();
+            s.startPixelSample(pixel, indices[j], base + dims::kBsdfDirection);
+            uDirection[j] = s.get2D();
+        }
     }
 }
 

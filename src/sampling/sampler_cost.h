@@ -2,10 +2,10 @@
 // the Cornell box: the camera rays of a packet of kCameraPacketSamples samples
 // first (startPixelSample at dimension 0, getPixel2D each), then the packet's
 // paths together, as estimateRadianceBatch traces them: at each vertex depth,
-// the light point (dims::kLightPoint) of every path, then their BSDF
-// directions (dims::kBsdfDirection), then — from the third vertex on — their
-// Russian roulette (dims::kRoulette, pbrt-v4's default), each dimension for
-// all paths at once (drawLanes1D / drawLanes2D).
+// the paths' light points (dims::kLightPoint) and BSDF directions
+// (dims::kBsdfDirection) through drawVertexLanes, then — from the third
+// vertex on — their Russian roulette (dims::kRoulette, pbrt-v4's default)
+// through drawLanes1D.
 // Shared by the Google Benchmark microbenchmarks and `pathlab bench --samplers`,
 // which multiplies it by the dimensions a frame draws.
 #pragma once
@@ -39,9 +39,9 @@ float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int dep
     for (int k = 0; k < count; ++k) indices[k] = firstIndex + k;
     for (int d = 0; d < depth; ++d) {
         const int base = dims::bounceBase(d);
+        float choice[kCameraPacketSamples];
         Vec2f light[kCameraPacketSamples], dir[kCameraPacketSamples];
-        drawLanes2D(s, pixel, indices, count, base + dims::kLightPoint, light);
-        drawLanes2D(s, pixel, indices, count, base + dims::kBsdfDirection, dir);
+        drawVertexLanes(s, pixel, indices, count, base, false, choice, light, dir);
         for (int k = 0; k < count; ++k) acc += light[k].x + light[k].y + dir[k].x + dir[k].y;
         if (d < kCostRouletteDepth) continue;
         float roulette[kCameraPacketSamples];

@@ -5,42 +5,57 @@
 
 namespace pathlab {
 
-// Every function is compiled twice, for AVX2 and for the x86-64 baseline, and
-// the loader picks one for the processor (GCC's and Clang's target_clones).
-// Integer operations and an exact int-to-float conversion: the same bits from both.
-#define PATHLAB_LANES [[gnu::target_clones("avx2", "default")]]
+// Every function is compiled twice, for the x86-64 baseline and for AVX2, and
+// the processor's best is chosen at run time (as diffuse_batch.cpp does; not
+// with target_clones, whose ifunc resolvers run before ThreadSanitizer's
+// runtime is up and crash the instrumented build). Integer operations and an
+// exact int-to-float conversion: the same bits from both.
+namespace baseline {
+#include "sampling/scramble_lanes_kernels.inc"
+}  // namespace baseline
 
-PATHLAB_LANES void owenSobolLanes1D(const uint32_t* index, uint32_t indexSeed, uint32_t valueSeed,
-                                    float* x) {
-    for (int j = 0; j < kCameraPacketSamples; ++j) {
-        const uint32_t i =
-            reverseBits32(laineKarrasPermutation(reverseBits32(index[j]), indexSeed));
-        x[j] = fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, valueSeed)));
-    }
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+namespace avx2 {
+#include "sampling/scramble_lanes_kernels.inc"
+}  // namespace avx2
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+
+namespace {
+bool hasAvx2() {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2;
+}
+}  // namespace
+
+void owenSobolLanes1D(const uint32_t* index, uint32_t indexSeed, uint32_t valueSeed, float* x) {
+    if (hasAvx2()) return avx2::owenSobol1D(index, indexSeed, valueSeed, x);
+    baseline::owenSobol1D(index, indexSeed, valueSeed, x);
 }
 
-PATHLAB_LANES void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
-                                    uint32_t ySeed, float* x, float* y) {
-    for (int j = 0; j < kCameraPacketSamples; ++j) {
-        const uint32_t i =
-            reverseBits32(laineKarrasPermutation(reverseBits32(index[j]), indexSeed));
-        x[j] = fixedPointToFloat(reverseBits32(laineKarrasPermutation(i, xSeed)));
-        y[j] = fixedPointToFloat(
-            reverseBits32(laineKarrasPermutation(sobolSupersetTransform32(i), ySeed)));
-    }
+void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed, uint32_t ySeed,
+                      float* x, float* y) {
+    if (hasAvx2()) return avx2::owenSobol2D(index, indexSeed, xSeed, ySeed, x, y);
+    baseline::owenSobol2D(index, indexSeed, xSeed, ySeed, x, y);
 }
 
-PATHLAB_LANES void laineKarrasLanes1D(const uint32_t* a, uint32_t xSeed, float* x) {
-    for (int j = 0; j < kCameraPacketSamples; ++j)
-        x[j] = fixedPointToFloat(reverseBits32(laineKarrasPermutation(a[j], xSeed)));
+void laineKarrasLanes1D(const uint32_t* a, uint32_t xSeed, float* x) {
+    if (hasAvx2()) return avx2::laineKarras1D(a, xSeed, x);
+    baseline::laineKarras1D(a, xSeed, x);
 }
 
-PATHLAB_LANES void laineKarrasLanes2D(const uint32_t* a, const uint32_t* b, uint32_t xSeed,
-                                      uint32_t ySeed, float* x, float* y) {
-    for (int j = 0; j < kCameraPacketSamples; ++j) {
-        x[j] = fixedPointToFloat(reverseBits32(laineKarrasPermutation(a[j], xSeed)));
-        y[j] = fixedPointToFloat(reverseBits32(laineKarrasPermutation(b[j], ySeed)));
-    }
+void laineKarrasLanes2D(const uint32_t* a, const uint32_t* b, uint32_t xSeed, uint32_t ySeed,
+                        float* x, float* y) {
+    if (hasAvx2()) return avx2::laineKarras2D(a, b, xSeed, ySeed, x, y);
+    baseline::laineKarras2D(a, b, xSeed, ySeed, x, y);
 }
 
 }  // namespace pathlab
