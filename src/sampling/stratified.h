@@ -43,7 +43,7 @@ class StratifiedSampler {
     void startPixelSample(Vec2i p, int index, int dim) {
         if (p.x != pixel_.x || p.y != pixel_.y)
             pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear();
-        index_ = sampleInPixel(index);
+        index_ = static_cast<uint32_t>(index % spp_);
         dimension_ = dim;
         cursor_.seek(pixelHash_, index, dim);
     }
@@ -56,40 +56,6 @@ class StratifiedSampler {
     Vec2f get2D() {
         const uint32_t stratum = permutationElement(index_, spp_, strataHash());
         dimension_ += 2;
-        return jitteredStratum(stratum);
-    }
-    Vec2f getPixel2D() { return get2D(); }
-
-    // Lane draws (sampler.h): the dimension's permutation seed once for all
-    // the lanes; each lane's stratum, then its jitter, as get1D / get2D.
-    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
-        startPixelSample(p, indices[0], dim);
-        const uint64_t hash = strataHash();
-        for (int j = 0; j < count; ++j) {
-            const uint32_t stratum = permutationElement(sampleInPixel(indices[j]), spp_, hash);
-            cursor_.seek(pixelHash_, indices[j], dim);
-            const float v = float(stratum) + cursor_.nextFloat();
-            out[j] = clampSample(powerOfTwo_ ? v * invSpp_ : v / float(spp_));
-        }
-        dimension_ = dim + 1;
-    }
-    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
-        startPixelSample(p, indices[0], dim);
-        const uint64_t hash = strataHash();
-        for (int j = 0; j < count; ++j) {
-            index_ = sampleInPixel(indices[j]);
-            cursor_.seek(pixelHash_, indices[j], dim);
-            out[j] = jitteredStratum(permutationElement(index_, spp_, hash));
-        }
-        dimension_ = dim + 2;
-    }
-
-    int xStrata() const { return xStrata_; }
-    int yStrata() const { return yStrata_; }
-
-  private:
-    // A point jittered inside stratum `stratum` of the nx × ny grid.
-    Vec2f jitteredStratum(uint32_t stratum) {
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
         if (powerOfTwo_) {
             const auto x = float(stratum & uint32_t(xStrata_ - 1)), y = float(stratum >> xShift_);
@@ -98,15 +64,17 @@ class StratifiedSampler {
         const int x = int(stratum) % xStrata_, y = int(stratum) / xStrata_;
         return {clampSample((x + dx) / float(xStrata_)), clampSample((y + dy) / float(yStrata_))};
     }
+    Vec2f getPixel2D() { return get2D(); }
+
+    int xStrata() const { return xStrata_; }
+    int yStrata() const { return yStrata_; }
+
+  private:
     // The permutation's seed for (pixel, dimension): four chained hash rounds,
     // the same for all of a pixel's samples.
     uint64_t strataHash() {
         return strataHashes_.get(dimension_,
                                  [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); });
-    }
-    // The sample's place among the pixel's spp_ (a mask when spp_ is a power of two).
-    uint32_t sampleInPixel(int index) const {
-        return powerOfTwo_ ? uint32_t(index) & uint32_t(spp_ - 1) : uint32_t(index % spp_);
     }
     static float clampSample(float v) { return v < kOneMinusEpsilon ? v : kOneMinusEpsilon; }
 
