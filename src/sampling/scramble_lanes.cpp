@@ -47,15 +47,4 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
     baseline::owenSobol2D(index, indexSeed, xSeed, ySeed, x, y);
 }
 
-void laineKarrasLanes1D(const uint32_t* a, uint32_t xSeed, float* x) {
-    if (hasAvx2()) return avx2::laineKarras1D(a, xSeed, x);
-    baseline::laineKarras1D(a, xSeed, x);
-}
-
-void laineKarrasLanes2D(const uint32_t* a, const uint32_t* b, uint32_t xSeed, uint32_t ySeed,
-                        float* x, float* y) {
-    if (hasAvx2()) return avx2::laineKarras2D(a, b, xSeed, ySeed, x, y);
-    baseline::laineKarras2D(a, b, xSeed, ySeed, x, y);
-}
-
 }  // namespace pathlab

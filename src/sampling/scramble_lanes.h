@@ -1,9 +1,9 @@
-// The arithmetic of lane draws (sampler.h, drawLanes1D/2D) for the Owen-
-// scrambled Sobol' samplers: kCameraPacketSamples samples side by side, pure
-// 32-bit integer operations in SIMD lanes. Out of line so that it can be
-// compiled for AVX2 and chosen at run time (eight lanes in one register; the
-// x86-64 baseline has no 32-bit vector multiply); the bits are the same
-// whichever version runs.
+// The arithmetic of `sobol-owen`'s lane draws (sampler.h, drawLanes1D/2D):
+// kCameraPacketSamples samples side by side, pure 32-bit integer operations
+// in SIMD lanes. Out of line so that it can be compiled for AVX2 and chosen at
+// run time (eight lanes in one register; GCC does not vectorise the 32-bit
+// multiplies for the x86-64 baseline); the bits are the same whichever
+// version runs.
 #pragma once
 
 #include <cstdint>
@@ -19,12 +19,5 @@ namespace pathlab {
 void owenSobolLanes1D(const uint32_t* index, uint32_t indexSeed, uint32_t valueSeed, float* x);
 void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed, uint32_t ySeed,
                       float* x, float* y);
-
-// x = R(L_xSeed(a)), y = R(L_ySeed(b)) as floats: the last step of ZSobol's
-// draws, given the lanes' permuted indices a and their bit-reversed Sobol'
-// dimension 1, b.
-void laineKarrasLanes1D(const uint32_t* a, uint32_t xSeed, float* x);
-void laineKarrasLanes2D(const uint32_t* a, const uint32_t* b, uint32_t xSeed, uint32_t ySeed,
-                        float* x, float* y);
 
 }  // namespace pathlab

@@ -321,40 +321,6 @@ class ZSobolSampler {
     }
     Vec2f getPixel2D() { return get2D(); }
 
-    // Lane draws (sampler.h): the lanes' permuted indices one by one (they
-    // share the dimension's cache and, mostly, its last tree node), then
-    // their Owen scrambles side by side (scramble_lanes.h).
-    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
-        if (dim >= kCachedDimensions) return drawEachLane1D(p, indices, count, dim, out);
-        startPixelSample(p, indices[0], dim);
-        CachedDimension& c = cached(dim);
-        uint32_t a[kCameraPacketSamples] = {};
-        for (int j = 0; j < count; ++j) {
-            mortonIndex_ = pixelMorton_ | uint64_t(indices[j]);
-            a[j] = uint32_t(c.highIndex | lowDigits(dim, c));
-        }
-        float x[kCameraPacketSamples];
-        laineKarrasLanes1D(a, c.seed1D, x);
-        for (int j = 0; j < count; ++j) out[j] = x[j];
-        dimension_ = dim + 1;
-    }
-    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
-        if (dim >= kCachedDimensions) return drawEachLane2D(p, indices, count, dim, out);
-        startPixelSample(p, indices[0], dim);
-        CachedDimension& c = cached(dim);
-        uint32_t a[kCameraPacketSamples] = {}, b[kCameraPacketSamples] = {};
-        for (int j = 0; j < count; ++j) {
-            mortonIndex_ = pixelMorton_ | uint64_t(indices[j]);
-            const uint64_t low = lowDigits(dim, c);
-            a[j] = uint32_t(c.highIndex | low);
-            b[j] = reversedSobol1(c, low);
-        }
-        float x[kCameraPacketSamples], y[kCameraPacketSamples];
-        laineKarrasLanes2D(a, b, c.seeds2D[0], c.seeds2D[1], x, y);
-        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
-        dimension_ = dim + 2;
-    }
-
     // The permuted global index for the current pixel sample in `dimension`
     // (Ahmed & Wonka 2020, §4: random permutation of each base-4 digit chosen
     // by the digits above it), computed digit by digit from the top. The
@@ -370,12 +336,6 @@ class ZSobolSampler {
   private:
     // A path of depth 8 draws 58 dimensions; deeper ones are computed uncached.
     static constexpr int kCachedDimensions = 64;
-    void drawEachLane1D(Vec2i p, const int* indices, int count, int dim, float* out) {
-        for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
-    }
-    void drawEachLane2D(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
-        for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
-    }
     struct CachedDimension {
         // Per dimension, for every pixel: the digit hashes' salt and the Owen seeds.
         uint64_t salt = 0;
