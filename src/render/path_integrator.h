@@ -287,8 +287,10 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
         scene.occludedLanes({out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax,
                              out.shadow, live},
                             blocked);
-        // Russian roulette's numbers are drawn only for the paths it can end.
-        float q[kBatchLanes] = {}, uRoulette[kBatchLanes] = {};
+        // Russian roulette's numbers are drawn only for the paths it can end;
+        // the other paths' fate is settled here.
+        int continues[kBatchLanes] = {};
+        float q[kBatchLanes];
         int playing[kBatchLanes], playingIndex[kBatchLanes], players = 0;
         for (int j = 0; j < live; ++j) {
             const int k = lane[j];
@@ -297,33 +299,33 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
                 if (!blocked[j])
                     L[k] += beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
             }
-            if (!out.bounce[j]) continue;
+            alive[k] = out.bounce[j] != 0;
+            if (!alive[k]) continue;
             beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
             prevBsdfPdf[k] = out.pdf[j];
             prevPoint[k] = si[k].p;
             prevNormal[k] = si[k].ns;
             dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
             q[j] = terminationProbability(settings, depth, beta[k]);
-            if (q[j] > 0) playing[players] = j, playingIndex[players++] = firstIndex + k;
+            if (q[j] > 0) {
+                playing[players] = j, playingIndex[players++] = firstIndex + k;
+                continue;
+            }
+            alive[k] = !isBlack(beta[k]);
+            continues[j] = alive[k];
+            counters.rays += uint64_t(alive[k]);
         }
         if (players > 0) {
             float u[kBatchLanes];
             drawLanes1D(sampler, pixel, playingIndex, players, base + dims::kRoulette, u);
             counters.dimensions += uint64_t(players);
-            for (int n = 0; n < players; ++n) uRoulette[playing[n]] = u[n];
-        }
-        int continues[kBatchLanes] = {};
-        for (int j = 0; j < live; ++j) {
-            const int k = lane[j];
-            alive[k] = out.bounce[j] != 0;
-            if (!alive[k]) continue;
-            if (q[j] > 0) {
-                alive[k] = uRoulette[j] >= q[j];
+            for (int n = 0; n < players; ++n) {
+                const int j = playing[n], k = lane[j];
                 beta[k] *= 1 / (1 - q[j]);
+                alive[k] = u[n] >= q[j] && !isBlack(beta[k]);
+                continues[j] = alive[k];
+                counters.rays += uint64_t(alive[k]);
             }
-            alive[k] = alive[k] && !isBlack(beta[k]);
-            continues[j] = alive[k];
-            counters.rays += uint64_t(alive[k]);
         }
 
         scene.intersectLanes(
