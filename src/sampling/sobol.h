@@ -314,9 +314,18 @@ class ZSobolSampler {
         }
         CachedDimension& c = cached(d);
         const uint64_t low = lowDigits(d, c);
+        // Sobol' dimension 1 is linear over GF(2) and the high and low index
+        // bits are disjoint, so its value is the cached high part XOR the
+        // low part; both are kept bit-reversed, as owenScramble wants them.
+        // The low part a byte at a time from tables: a loop over its set bits
+        // would end at an unpredictable count.
+        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
+                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
+                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
+        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
         const uint64_t xy =
             reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
-                              laineKarrasPermutation(reversedSobol1(c, low), c.seeds2D[1]));
+                              laineKarrasPermutation(reversed1, c.seeds2D[1]));
         return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
     }
     Vec2f getPixel2D() { return get2D(); }
@@ -352,18 +361,6 @@ class ZSobolSampler {
         uint64_t lastPrefix = 0;
         uint8_t lastPermutation = 0;
     };
-    // Sobol' dimension 1 of the permuted index highIndex | low, bit-reversed
-    // (as the Owen scramble wants it). It is linear over GF(2) and the high and
-    // low index bits are disjoint, so it is the cached high part XOR the low
-    // part's. The low part a byte at a time from tables: a loop over its set
-    // bits would end at an unpredictable count.
-    uint32_t reversedSobol1(const CachedDimension& c, uint64_t low) const {
-        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
-                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
-                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
-        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
-        return reversed1;
-    }
     CachedDimension& cached(int d) {
         CachedDimension& c = cache_[size_t(d)];
         if (!((cacheValid_ >> d) & 1)) {
