@@ -163,6 +163,36 @@ TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
     }
 }
 
+TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
+    // The lane draws' kernels (AVX2 on processors that have it) on every
+    // tabulated dimension, eight indices below 2^32 per call — among them
+    // 0, 2^32 − 1 and indices with more digits than a float keeps — against
+    // the scalar scramblers lane by lane.
+    std::vector<uint64_t> indices;
+    for (uint64_t a : haltonIndices())
+        if (a >> 32 == 0) indices.push_back(a);
+    while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
+    for (uint64_t seed : {0, 5}) {
+        const auto perms = haltonDigitPermutations(seed);
+        for (const HaltonDimension& t : perms->dimensions) {
+            for (size_t i = 0; i < indices.size(); i += kCameraPacketSamples) {
+                const uint64_t* a = indices.data() + i;
+                // Every count: four lanes to a register, the last one partly live.
+                const int count = 1 + int(i / kCameraPacketSamples) % kCameraPacketSamples;
+                float randomDigit[kCameraPacketSamples], owen[kCameraPacketSamples];
+                randomDigitScrambledLanes(t, a, count, randomDigit);
+                owenScrambledLanes(t, a, count, owen);
+                for (int j = 0; j < count; ++j) {
+                    ASSERT_EQ(bits(randomDigit[j]), bits(randomDigitScrambled(t, a[j])))
+                        << "base " << t.base << " index " << a[j];
+                    ASSERT_EQ(bits(owen[j]), bits(owenScrambled(t, a[j])))
+                        << "base " << t.base << " index " << a[j];
+                }
+            }
+        }
+    }
+}
+
 TEST(HaltonDigits, SamplersDrawTheDigitLoopsValues) {
     // Across the end of the tables (128 dimensions) and for pixels of a real image.
     const int* primes = primeTable();

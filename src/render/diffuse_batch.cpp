@@ -4,12 +4,14 @@
 
 #include <cstring>
 
+#include "core/simd_target.h"
+
 namespace pathlab {
 
 // Four lanes at a time with SSE (every x86-64), and eight with AVX2 where the
 // processor has it (chosen at run time): the same operations either way, so
-// the same bits. The AVX2 code is compiled for AVX2 alone — without FMA, so
-// GCC contracts no multiply-add and rounding stays that of the scalar code.
+// the same bits (core/simd_target.h: AVX2 without FMA, so rounding stays that
+// of the scalar code).
 namespace sse {
 namespace {
 using F = float __attribute__((vector_size(16)));
@@ -22,13 +24,7 @@ F sqrtV(F x) {
 }  // namespace
 }  // namespace sse
 
-// GCC and Clang spell "compile this region for AVX2" differently.
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+PATHLAB_AVX2_BEGIN
 namespace avx2 {
 namespace {
 using F = float __attribute__((vector_size(32)));
@@ -45,15 +41,10 @@ void shade(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
     shadeLanes(light, epsilon, in, 0, out);
 }
 }  // namespace avx2
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+PATHLAB_AVX2_END
 
 bool batchUsesAvx2() {
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    return avx2;
+    return cpuHasAvx2();
 }
 
 void shadeDiffuseBatch(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,

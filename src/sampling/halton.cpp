@@ -52,11 +52,18 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
     for (int d = 0; d < kTabulatedBases && primes[d] <= kMaxPairBase; ++d)
         pairTotal += size_t(primes[d]) * size_t(primes[d]) * size_t(floatDigitCount(primes[d]) / 2);
     pairTables.resize(pairTotal);
+    pairTables32.resize(pairTotal);
     uint16_t* nextPairs = pairTables.data();
     tails.resize(size_t(kTabulatedBases) * kMaxDigits);
     powers.resize(size_t(kTabulatedBases) * kMaxDigits);
     dimensions.reserve(kTabulatedBases);
     rotations.resize(table.size() + kTabulatedBases);
+    permutations32.assign(table.begin(), table.end());
+    size_t scrambledTotal = 0;
+    for (int d = 0; d < kTabulatedBases; ++d)
+        scrambledTotal += size_t(primes[d]) * size_t(floatDigitCount(primes[d]));
+    scrambledDigits32.resize(scrambledTotal);
+    int32_t* nextScrambled = scrambledDigits32.data();
     for (int d = 0; d < kTabulatedBases; ++d) {
         const int base = primes[d];
         const int digits = floatDigitCount(base);
@@ -79,13 +86,22 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         if (pairs) {
             const uint32_t b = uint32_t(base);
             for (int k = 0; k + 1 < digits; k += 2)
-                for (uint32_t q = 0; q < b * b; ++q)
-                    *nextPairs++ = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
-                                            perm[rotateDigit(q / b, shift[k + 1], b)]);
+                for (uint32_t q = 0; q < b * b; ++q) {
+                    const auto pair = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
+                                               perm[rotateDigit(q / b, shift[k + 1], b)]);
+                    pairTables32[size_t(nextPairs - pairTables.data())] = pair;
+                    *nextPairs++ = pair;
+                }
         }
-        dimensions.push_back(HaltonDimension{
-            BaseDivider{uint32_t(base)}, uint32_t(base), digits, scale, perm, shift, tail, power,
-            pairs, BaseDivider{uint32_t(base * base)}, owenHash, rotation});
+        int32_t* scrambled = nextScrambled;
+        for (int k = 0; k < digits; ++k)
+            for (int digit = 0; digit < base; ++digit)
+                *nextScrambled++ = perm[rotateDigit(uint32_t(digit), shift[k], uint32_t(base))];
+        dimensions.push_back(
+            HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits, scale, perm, shift,
+                            tail, power, pairs, BaseDivider{uint32_t(base * base)}, owenHash,
+                            rotation, permutations32.data() + offset[d], scrambled,
+                            pairs ? pairTables32.data() + (pairs - pairTables.data()) : nullptr});
     }
 }
 

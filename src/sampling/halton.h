@@ -86,7 +86,21 @@ struct HaltonDimension {
     uint64_t owenHash;        // Owen: hashValues(seed, d, 0x4f57454e)
     // Owen: the rotations of the root ([0]) and of its children ([1 + d_0]).
     const uint16_t* rotations;
+    // For the lane draws' lookups, as 32-bit entries: the permutation,
+    // (RandomDigit) digit k's scrambled value π_b((d + s_k) mod b) at [k·b + d],
+    // and `pairs` (null where it is).
+    const int32_t* permutation32;
+    const int32_t* scrambledDigits32;
+    const int32_t* pairs32;
 };
+
+// The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
+// or owenScrambled(t, a[j]) for the indices a[0 … count) < 2^32, bit for bit
+// (tested) — the lanes side by side in AVX2 registers where the processor has
+// them. a and out hold kCameraPacketSamples entries whatever the count (a
+// register's four lanes are written together).
+void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out);
+void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out);
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
@@ -102,6 +116,8 @@ struct HaltonDigitPermutations {
     std::vector<uint64_t> tails, powers;  // kMaxDigits per tabulated base
     std::vector<uint16_t> rotations;      // 1 + b per tabulated base
     std::vector<uint16_t> pairTables;     // HaltonDimension::pairs of every base ≤ kMaxPairBase
+    // HaltonDimension's 32-bit tables for the lane draws.
+    std::vector<int32_t> permutations32, scrambledDigits32, pairTables32;
     std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
@@ -156,10 +172,58 @@ class HaltonSamplerT {
                 radicalInverse(bases_[1], haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
     }
 
+    // Lane draws (sampler.h) of the scrambled variants: a tabulated
+    // dimension's digits for all the lanes at once. Untabulated dimensions and
+    // indices from 2^32 on take the digit loops lane by lane.
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim,
+                    float* out) requires(kScrambling != HaltonScrambling::None) {
+        uint64_t a[kCameraPacketSamples];
+        if (!laneIndices(p, indices, count, dim, 1, a)) {
+            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
+            return;
+        }
+        float x[kCameraPacketSamples];
+        scrambleLanes(dimension_ - 1, a, count, x);
+        for (int j = 0; j < count; ++j) out[j] = x[j];
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim,
+                    Vec2f* out) requires(kScrambling != HaltonScrambling::None) {
+        uint64_t a[kCameraPacketSamples];
+        if (!laneIndices(p, indices, count, dim, 2, a)) {
+            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
+            return;
+        }
+        float x[kCameraPacketSamples], y[kCameraPacketSamples];
+        scrambleLanes(dimension_ - 2, a, count, x);
+        scrambleLanes(dimension_ - 1, a, count, y);
+        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+    }
+
     // The value of dimension d of Halton index a (exposed for tests and tools).
     float sampleDimension(int d) const;
 
   private:
+    // The lanes' Halton indices (padded with the pixel's first); positions the
+    // sampler past the `used` dimensions from dim. False when the lane kernels
+    // do not apply: a dimension past the tables, or an index from 2^32 on.
+    bool laneIndices(Vec2i p, const int* indices, int count, int dim, int used, uint64_t* a) {
+        startPixelSample(p, indices[0], dim);
+        const int first = dimension_;
+        dimension_ += used;
+        uint64_t largest = 0;
+        for (int j = 0; j < kCameraPacketSamples; ++j) {
+            a[j] = pixelOffset_ + uint64_t(j < count ? indices[j] : indices[0]) * stride_;
+            largest = std::max(largest, a[j]);
+        }
+        return first + used <= HaltonDigitPermutations::kTabulatedBases && largest >> 32 == 0;
+    }
+    void scrambleLanes(int d, const uint64_t* a, int count, float* out) const {
+        if constexpr (kScrambling == HaltonScrambling::RandomDigit)
+            randomDigitScrambledLanes(dimensions_[d], a, count, out);
+        else
+            owenScrambledLanes(dimensions_[d], a, count, out);
+    }
+
     int spp_;
     uint64_t seed_;
     HaltonImageMapping mapping_;
