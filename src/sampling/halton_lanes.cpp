@@ -86,14 +86,6 @@ __m128 floatBelowLanes(__m256d v) {
     return _mm_min_ps(_mm_castsi128_ps(below), _mm_set1_ps(kOneMinusEpsilon));
 }
 
-// table[index] for four 64-bit indices, as four scalar loads: on this
-// processor family a hardware gather costs more than the loads it replaces.
-__m128i lookup(const int32_t* table, __m256i index) {
-    alignas(32) int64_t i[kRegisterLanes];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(i), index);
-    return _mm_setr_epi32(table[i[0]], table[i[1]], table[i[2]], table[i[3]]);
-}
-
 void loadIndices(const uint64_t* a, int registers, __m256d* x) {
     for (int h = 0; h < registers; ++h)
         x[h] = exactDouble(
@@ -124,7 +116,7 @@ void randomDigitLanes(const HaltonDimension& t, const uint64_t* a, int registers
             const int32_t* scrambled = t.pairs32 + size_t(k / 2) * base2;
             for (int h = 0; h < registers; ++h) {
                 const __m256i pair = exactInteger(pairs.next(x[h]));
-                const __m128i value = lookup(scrambled, pair);
+                const __m128i value = _mm256_i64gather_epi32(scrambled, pair, 4);
                 reversed[h] = pairs.append(reversed[h], _mm256_cvtepi32_pd(value));
             }
         }
@@ -133,7 +125,7 @@ void randomDigitLanes(const HaltonDimension& t, const uint64_t* a, int registers
         const int32_t* scrambled = t.scrambledDigits32 + size_t(k) * t.base;
         for (int h = 0; h < registers; ++h) {
             const __m256i digit = exactInteger(digits.next(x[h]));
-            const __m128i value = lookup(scrambled, digit);
+            const __m128i value = _mm256_i64gather_epi32(scrambled, digit, 4);
             reversed[h] = digits.append(reversed[h], _mm256_cvtepi32_pd(value));
         }
     }
@@ -159,7 +151,7 @@ void owenLanes(const HaltonDimension& t, const uint64_t* a, int registers, float
             __m256i rotated = _mm256_add_epi64(digit, rotation);
             rotated = _mm256_sub_epi64(
                 rotated, _mm256_and_si256(base, _mm256_cmpgt_epi64(rotated, largestDigit)));
-            const __m128i value = lookup(t.permutation32, rotated);
+            const __m128i value = _mm256_i64gather_epi32(t.permutation32, rotated, 4);
             reversed[h] = digits.append(reversed[h], _mm256_cvtepi32_pd(value));
             prefix[h] = digits.append(prefix[h], digitValue);
         }
