@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <iostream>
 #include <set>
 #include <vector>
 
@@ -172,6 +173,12 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
     for (uint64_t a : haltonIndices())
         if (a >> 32 == 0) indices.push_back(a);
     while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
+    // Every instruction set this processor has (the baseline always).
+    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
+    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
+        if (level <= bestSimdLevel()) levels.push_back(level);
+    if (levels.size() < 3)
+        std::cout << "(this processor runs " << levels.size() - 1 << " of the 2 SIMD kernels)\n";
     for (uint64_t seed : {0, 5}) {
         const auto perms = haltonDigitPermutations(seed);
         for (const HaltonDimension& t : perms->dimensions) {
@@ -179,14 +186,16 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
                 const uint64_t* a = indices.data() + i;
                 // Every count: four lanes to a register, the last one partly live.
                 const int count = 1 + int(i / kCameraPacketSamples) % kCameraPacketSamples;
-                float randomDigit[kCameraPacketSamples], owen[kCameraPacketSamples];
-                randomDigitScrambledLanes(t, a, count, randomDigit);
-                owenScrambledLanes(t, a, count, owen);
-                for (int j = 0; j < count; ++j) {
-                    ASSERT_EQ(bits(randomDigit[j]), bits(randomDigitScrambled(t, a[j])))
-                        << "base " << t.base << " index " << a[j];
-                    ASSERT_EQ(bits(owen[j]), bits(owenScrambled(t, a[j])))
-                        << "base " << t.base << " index " << a[j];
+                for (SimdLevel level : levels) {
+                    float randomDigit[kCameraPacketSamples], owen[kCameraPacketSamples];
+                    randomDigitScrambledLanes(t, a, count, randomDigit, level);
+                    owenScrambledLanes(t, a, count, owen, level);
+                    for (int j = 0; j < count; ++j) {
+                        ASSERT_EQ(bits(randomDigit[j]), bits(randomDigitScrambled(t, a[j])))
+                            << "base " << t.base << " index " << a[j] << " level " << int(level);
+                        ASSERT_EQ(bits(owen[j]), bits(owenScrambled(t, a[j])))
+                            << "base " << t.base << " index " << a[j] << " level " << int(level);
+                    }
                 }
             }
         }

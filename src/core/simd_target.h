@@ -1,20 +1,30 @@
-// Compiling a region of a file for AVX2, to be chosen at run time on the
-// processors that have it. Each such file compiles the same code twice — for
+// Compiling a region of a file for AVX2 (or AVX-512), to be chosen at run time
+// on the processors that have it. Each such file compiles the same code for
 // the x86-64 baseline and inside PATHLAB_AVX2_BEGIN … PATHLAB_AVX2_END — and
-// dispatches on cpuHasAvx2(). Not with target_clones: its ifunc resolvers run
-// before ThreadSanitizer's runtime is up and crash the instrumented build.
+// dispatches on cpuHasAvx2() or bestSimdLevel(). Not with target_clones: its
+// ifunc resolvers run before ThreadSanitizer's runtime is up and crash the
+// instrumented build.
 #pragma once
 
 // GCC and Clang spell "compile this region for AVX2" differently. AVX2 alone,
 // without FMA, so that no multiply-add is contracted and rounding stays that of
-// the baseline code.
+// the baseline code. The AVX-512 region may contract: its one user
+// (halton_lanes.cpp) does exact integer arithmetic in doubles, where a fused
+// multiply-add rounds nothing.
 #if defined(__clang__)
 #define PATHLAB_AVX2_BEGIN \
     _Pragma("clang attribute push(__attribute__((target(\"avx2\"))), apply_to = function)")
 #define PATHLAB_AVX2_END _Pragma("clang attribute pop")
+// clang-format off
+#define PATHLAB_AVX512_BEGIN _Pragma("clang attribute push(__attribute__((target(\"avx2,avx512f,avx512dq,avx512vl\"))), apply_to = function)")
+// clang-format on
+#define PATHLAB_AVX512_END _Pragma("clang attribute pop")
 #else
 #define PATHLAB_AVX2_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2\")")
 #define PATHLAB_AVX2_END _Pragma("GCC pop_options")
+#define PATHLAB_AVX512_BEGIN \
+    _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,avx512f,avx512dq,avx512vl\")")
+#define PATHLAB_AVX512_END _Pragma("GCC pop_options")
 #endif
 
 namespace pathlab {
@@ -22,6 +32,20 @@ namespace pathlab {
 inline bool cpuHasAvx2() {
     static const bool avx2 = __builtin_cpu_supports("avx2");
     return avx2;
+}
+
+// The instruction sets a kernel may be compiled for, in order; Avx512 means
+// AVX-512 F, DQ and VL, with AVX2.
+enum class SimdLevel { Baseline, Avx2, Avx512 };
+
+inline SimdLevel bestSimdLevel() {
+    static const SimdLevel level = __builtin_cpu_supports("avx512f") &&
+                                           __builtin_cpu_supports("avx512dq") &&
+                                           __builtin_cpu_supports("avx512vl") && cpuHasAvx2()
+                                       ? SimdLevel::Avx512
+                                   : cpuHasAvx2() ? SimdLevel::Avx2
+                                                  : SimdLevel::Baseline;
+    return level;
 }
 
 }  // namespace pathlab

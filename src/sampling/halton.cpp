@@ -59,6 +59,7 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
     dimensions.reserve(kTabulatedBases);
     rotations.resize(table.size() + kTabulatedBases);
     permutations32.assign(table.begin(), table.end());
+    rotations32.resize(rotations.size());
     size_t scrambledTotal = 0;
     for (int d = 0; d < kTabulatedBases; ++d)
         scrambledTotal += size_t(primes[d]) * size_t(floatDigitCount(primes[d]));
@@ -82,6 +83,8 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         rotation[0] = uint16_t(owenRotation(owenHash, 0, 0, uint32_t(base)));
         for (int d0 = 0; d0 < base; ++d0)
             rotation[1 + d0] = uint16_t(owenRotation(owenHash, 1, uint64_t(d0), uint32_t(base)));
+        std::copy(rotation, rotation + 1 + base,
+                  rotations32.begin() + (rotation - rotations.data()));
         uint16_t* pairs = base <= kMaxPairBase ? nextPairs : nullptr;
         if (pairs) {
             const uint32_t b = uint32_t(base);
@@ -101,7 +104,8 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
             HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits, scale, perm, shift,
                             tail, power, pairs, BaseDivider{uint32_t(base * base)}, owenHash,
                             rotation, permutations32.data() + offset[d], scrambled,
-                            pairs ? pairTables32.data() + (pairs - pairTables.data()) : nullptr});
+                            pairs ? pairTables32.data() + (pairs - pairTables.data()) : nullptr,
+                            rotations32.data() + (rotation - rotations.data())});
     }
 }
 

@@ -42,6 +42,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/simd_target.h"
 #include "sampling/lowdiscrepancy.h"
 #include "sampling/sampler.h"
 
@@ -88,19 +89,23 @@ struct HaltonDimension {
     const uint16_t* rotations;
     // For the lane draws' lookups, as 32-bit entries: the permutation,
     // (RandomDigit) digit k's scrambled value π_b((d + s_k) mod b) at [k·b + d],
-    // and `pairs` (null where it is).
+    // `pairs` (null where it is) and (Owen) `rotations`.
     const int32_t* permutation32;
     const int32_t* scrambledDigits32;
     const int32_t* pairs32;
+    const int32_t* rotations32;
 };
 
 // The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
 // or owenScrambled(t, a[j]) for the indices a[0 … count) < 2^32, bit for bit
 // (tested) — the lanes side by side in AVX2 registers where the processor has
 // them. a and out hold kCameraPacketSamples entries whatever the count (a
-// register's four lanes are written together).
-void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out);
-void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out);
+// register's four lanes are written together). `limit` caps the instruction
+// set (the tests run every one the processor has).
+void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
+                               SimdLevel limit = SimdLevel::Avx512);
+void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
+                        SimdLevel limit = SimdLevel::Avx512);
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
@@ -117,7 +122,7 @@ struct HaltonDigitPermutations {
     std::vector<uint16_t> rotations;      // 1 + b per tabulated base
     std::vector<uint16_t> pairTables;     // HaltonDimension::pairs of every base ≤ kMaxPairBase
     // HaltonDimension's 32-bit tables for the lane draws.
-    std::vector<int32_t> permutations32, scrambledDigits32, pairTables32;
+    std::vector<int32_t> permutations32, scrambledDigits32, pairTables32, rotations32;
     std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
