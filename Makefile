@@ -20,7 +20,7 @@ setup:
 PGO ?= 1
 PGO_BUILD := build/pgo-generate
 PGO_DATA := $(abspath build/pgo-data)
-PGO_SOURCES := $(shell find src -name '*.cpp' -o -name '*.h') CMakeLists.txt scripts/pgo-train.sh
+PGO_SOURCES := $(shell find src -name '*.cpp' -o -name '*.h' -o -name '*.inc') CMakeLists.txt scripts/pgo-train.sh
 ifeq ($(PGO),1)
 RELEASE_OPTIONS := -DPATHLAB_PGO=use -DPATHLAB_PGO_DIR=$(PGO_DATA)
 PGO_STAMP := $(PGO_DATA)/trained

@@ -209,8 +209,14 @@ class OwenSobolSampler {
     Vec2f getPixel2D() { return get2D(); }
 
     // Lane draws (sampler.h): the dimension's seeds once for all the lanes,
-    // the lanes' bit operations side by side (scramble_lanes.h).
+    // the lanes' bit operations side by side (scramble_lanes.h). The side by
+    // side kernel does all eight lanes; one or two live lanes are cheaper
+    // drawn one by one.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        if (count <= kFewLanes) {
+            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
+            return;
+        }
         startPixelSample(p, indices[0], dim);
         const Seeds k = seeds(dim, 0x31, seeds1D_);
         uint32_t index[kCameraPacketSamples];
@@ -221,6 +227,10 @@ class OwenSobolSampler {
         dimension_ = dim + 1;
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        if (count <= kFewLanes) {
+            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
+            return;
+        }
         startPixelSample(p, indices[0], dim);
         const Seeds k = seeds(dim, 0x32, seeds2D_);
         uint32_t index[kCameraPacketSamples];
@@ -232,6 +242,7 @@ class OwenSobolSampler {
     }
 
   private:
+    static constexpr int kFewLanes = 2;
     // h = mixBits(pixel hash, dimension, tag) scrambles the index (its low 32
     // bits) and mixBits(h) seeds the output scrambles.
     struct Seeds {
