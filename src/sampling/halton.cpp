@@ -105,7 +105,8 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
                             tail, power, pairs, BaseDivider{uint32_t(base * base)}, owenHash,
                             rotation, permutations32.data() + offset[d], scrambled,
                             pairs ? pairTables32.data() + (pairs - pairTables.data()) : nullptr,
-                            rotations32.data() + (rotation - rotations.data())});
+                            rotations32.data() + (rotation - rotations.data()), 1.0 / base,
+                            1.0 / (double(base) * base)});
     }
 }
 

@@ -94,6 +94,7 @@ struct HaltonDimension {
     const int32_t* scrambledDigits32;
     const int32_t* pairs32;
     const int32_t* rotations32;
+    double inverseBase, inversePairBase;  // RN(1 / b), RN(1 / b²)
 };
 
 // The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
