@@ -40,24 +40,39 @@ namespace avx512 {
 }  // namespace avx512
 PATHLAB_AVX512_END
 
+namespace {
 // Lanes in registers of four, as many as the live lanes fill; one or two live
-// lanes are cheaper lane by lane.
+// lanes are cheaper lane by lane (the scalar loops).
+int registersFor(int count) {
+    return (count + kRegisterLanes - 1) / kRegisterLanes;
+}
+SimdLevel levelFor(int count, SimdLevel limit) {
+    return count > 2 ? std::min(limit, bestSimdLevel()) : SimdLevel::Baseline;
+}
+}  // namespace
+
 void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                                SimdLevel limit) {
-    const int registers = (count + kRegisterLanes - 1) / kRegisterLanes;
-    const SimdLevel level = count > 2 ? std::min(limit, bestSimdLevel()) : SimdLevel::Baseline;
-    if (level == SimdLevel::Avx512) return avx512::randomDigitLanes(t, a, registers, out);
-    if (level == SimdLevel::Avx2) return avx2::randomDigitLanes(t, a, registers, out);
-    for (int j = 0; j < count; ++j) out[j] = randomDigitScrambled(t, a[j]);
+    switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512:
+            return avx512::randomDigitLanes(t, a, registersFor(count), out);
+        case SimdLevel::Avx2:
+            return avx2::randomDigitLanes(t, a, registersFor(count), out);
+        case SimdLevel::Baseline:
+            for (int j = 0; j < count; ++j) out[j] = randomDigitScrambled(t, a[j]);
+    }
 }
 
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                         SimdLevel limit) {
-    const int registers = (count + kRegisterLanes - 1) / kRegisterLanes;
-    const SimdLevel level = count > 2 ? std::min(limit, bestSimdLevel()) : SimdLevel::Baseline;
-    if (level == SimdLevel::Avx512) return avx512::owenLanes(t, a, registers, out);
-    if (level == SimdLevel::Avx2) return avx2::owenLanes(t, a, registers, out);
-    for (int j = 0; j < count; ++j) out[j] = owenScrambled(t, a[j]);
+    switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512:
+            return avx512::owenLanes(t, a, registersFor(count), out);
+        case SimdLevel::Avx2:
+            return avx2::owenLanes(t, a, registersFor(count), out);
+        case SimdLevel::Baseline:
+            for (int j = 0; j < count; ++j) out[j] = owenScrambled(t, a[j]);
+    }
 }
 
 }  // namespace pathlab
