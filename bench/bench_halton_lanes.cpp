@@ -1,8 +1,8 @@
 // The scrambled Halton lane kernels (sampling/halton_lanes.cpp) per
 // instruction set: nanoseconds per value over the dimensions a path of depth 8
-// draws (2 … 57), for a packet's indices at 512×512, 64 spp, with 8 and with
-// 3 live lanes (a batch's paths die as they bounce). Levels this processor
-// lacks are skipped.
+// draws (2 … 57), for the first packet's indices (samples 0–7) of each pixel
+// of a 512×512 image's first row, with 8 and with 3 live lanes (a batch's
+// paths die as they bounce). Levels this processor lacks are skipped.
 #include <benchmark/benchmark.h>
 
 #include "sampling/halton.h"

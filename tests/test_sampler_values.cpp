@@ -374,5 +374,44 @@ TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
     }
 }
 
+TEST(SamplerValues, LaneDrawsAtTheirLimits) {
+    // The lane draws' edges: one and two live lanes (drawn lane by lane),
+    // dimensions on both sides of the Halton tables' end (128), and Halton
+    // indices on both sides of 2^32 — in a 65536 × 59049 image the stride
+    // between a pixel's samples is 2^16 · 3^10 ≈ 3.9 · 10^9, so from sample 1
+    // on every index is past 2^32, where the Halton lanes hand over to the
+    // scalar loops.
+    for (const char* name : {"halton", "halton-rd", "halton-owen", "sobol-owen"}) {
+        for (Vec2i resolution : {Vec2i{32, 16}, Vec2i{65536, 59049}}) {
+            const SamplerConfig config{64, 11, resolution};
+            AnySampler lanes = makeSampler(name, config), single = makeSampler(name, config);
+            std::visit(
+                [&](auto& a) {
+                    auto& b = std::get<std::decay_t<decltype(a)>>(single);
+                    for (int count = 1; count <= kCameraPacketSamples; ++count) {
+                        int indices[kCameraPacketSamples];
+                        for (int k = 0; k < count; ++k) indices[k] = k * 3 % 8;
+                        for (int dim : {2, 61, 125, 126, 127, 128, 131}) {
+                            const Vec2i pixel{count, 3};
+                            float x[kCameraPacketSamples];
+                            Vec2f xy[kCameraPacketSamples];
+                            drawLanes1D(a, pixel, indices, count, dim, x);
+                            drawLanes2D(a, pixel, indices, count, dim, xy);
+                            for (int j = 0; j < count; ++j) {
+                                b.startPixelSample(pixel, indices[j], dim);
+                                EXPECT_EQ(x[j], b.get1D()) << name << " dim " << dim;
+                                b.startPixelSample(pixel, indices[j], dim);
+                                const Vec2f expected = b.get2D();
+                                EXPECT_EQ(xy[j].x, expected.x) << name << " dim " << dim;
+                                EXPECT_EQ(xy[j].y, expected.y) << name << " dim " << dim;
+                            }
+                        }
+                    }
+                },
+                lanes);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -1,16 +1,17 @@
 // Compiling a region of a file for AVX2 (or AVX-512), to be chosen at run time
-// on the processors that have it. Each such file compiles the same code for
-// the x86-64 baseline and inside PATHLAB_AVX2_BEGIN … PATHLAB_AVX2_END — and
-// dispatches on cpuHasAvx2() or bestSimdLevel(). Not with target_clones: its
-// ifunc resolvers run before ThreadSanitizer's runtime is up and crash the
+// on the processors that have it. Each such file has a baseline x86-64 version
+// of its kernels (the same code, or a scalar loop) and the SIMD ones inside
+// PATHLAB_AVX2_BEGIN … PATHLAB_AVX2_END (or the AVX-512 pair), and dispatches
+// on cpuHasAvx2() or bestSimdLevel(). Not with target_clones: its ifunc
+// resolvers run before ThreadSanitizer's runtime is up and crash the
 // instrumented build.
 #pragma once
 
 // GCC and Clang spell "compile this region for AVX2" differently. AVX2 alone,
 // without FMA, so that no multiply-add is contracted and rounding stays that of
-// the baseline code. The AVX-512 region may contract: its one user
-// (halton_lanes.cpp) does exact integer arithmetic in doubles, where a fused
-// multiply-add rounds nothing.
+// the baseline code. The AVX-512 region may contract: in its one user
+// (halton_lanes.cpp) every multiply followed by an add is exact integer
+// arithmetic in doubles, where a fused multiply-add rounds nothing.
 #if defined(__clang__)
 #define PATHLAB_AVX2_BEGIN \
     _Pragma("clang attribute push(__attribute__((target(\"avx2\"))), apply_to = function)")

@@ -98,11 +98,12 @@ struct HaltonDimension {
 };
 
 // The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
-// or owenScrambled(t, a[j]) for the indices a[0 … count) < 2^32, bit for bit
-// (tested) — the lanes side by side in AVX2 registers where the processor has
-// them. a and out hold kCameraPacketSamples entries whatever the count (a
-// register's four lanes are written together). `limit` caps the instruction
-// set (the tests run every one the processor has).
+// or owenScrambled(t, a[j]) for the indices a[0 … count), bit for bit (tested)
+// — the lanes side by side in AVX2 registers where the processor has them. a
+// and out hold kCameraPacketSamples entries whatever the count: a register's
+// four lanes are read and written together, so every entry of a must be below
+// 2^32, the lanes past count too (the sampler pads them with its first index).
+// `limit` caps the instruction set (the tests run every one the processor has).
 void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                                SimdLevel limit = SimdLevel::Avx512);
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
@@ -113,7 +114,9 @@ struct HaltonDigitPermutations {
     static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
     static constexpr int kTabulatedBases = 128;
     // Pair tables stop here: b² entries per pair of digit positions (61: 3721
-    // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together.
+    // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together
+    // (and their 32-bit copies for the lane draws: about 1.3 MB per seed with
+    // the digit, permutation and rotation tables).
     static constexpr int kMaxPairBase = 61;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`

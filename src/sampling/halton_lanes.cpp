@@ -3,11 +3,12 @@
 // All lanes of a call share the base and the digit count, so one loop serves
 // them; the arithmetic is exact, so each lane's float is, bit for bit, what
 // the scalar digit loops of halton.h give (tested):
-//   - ⌊a / b⌋ in double precision: for integral a < 2^32, (a + ½)/b lies at
-//     least ½/b ≥ 2^-14 from an integer, and the product (a + ½)·RN(1/b)
-//     misses it by under 2^-19, so its floor is the quotient;
+//   - ⌊a / b⌋ in double precision: for integral a < 2^32 and b ≤ 61² (the
+//     pair tables' largest divisor), (a + ½)/b lies at least ½/b > 2^-13 from
+//     an integer, and the product (a + ½)·RN(1/b) misses it by under 2^-21,
+//     so its floor is the quotient;
 //   - the digits, the node prefixes and the scrambled integer stay below 2^52
-//     (b^digits < 2^51 for every base), where doubles are exact integers;
+//     (b^digits < 2^42 for every tabulated base), where doubles are exact;
 //   - Owen's node hash is mixBits's 64-bit multiplies, built from 32 × 32-bit
 //     ones where the processor has no 64-bit lane multiply (AVX2 alone);
 //   - the final scale and floatBelow are the scalar code's operations.
