@@ -334,6 +334,25 @@ TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
             << "draw " << i;
 }
 
+// drawLanes1D/2D of `lanes` against startPixelSample + get1D/get2D of
+// `single`, a second copy of the sampler, lane by lane, bit for bit.
+template <typename S>
+void expectLanesEqualEachDraw(S& lanes, S& single, Vec2i pixel, const int* indices, int count,
+                              int dim, const std::string& name) {
+    float x[kCameraPacketSamples];
+    Vec2f xy[kCameraPacketSamples];
+    drawLanes1D(lanes, pixel, indices, count, dim, x);
+    drawLanes2D(lanes, pixel, indices, count, dim, xy);
+    for (int j = 0; j < count; ++j) {
+        single.startPixelSample(pixel, indices[j], dim);
+        EXPECT_EQ(x[j], single.get1D()) << name << " dim " << dim;
+        single.startPixelSample(pixel, indices[j], dim);
+        const Vec2f expected = single.get2D();
+        EXPECT_EQ(xy[j].x, expected.x) << name << " dim " << dim;
+        EXPECT_EQ(xy[j].y, expected.y) << name << " dim " << dim;
+    }
+}
+
 TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
     // drawLanes1D/2D, which the batched integrator uses, against
     // startPixelSample + get1D/get2D of a second copy of the sampler: live
@@ -355,18 +374,7 @@ TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
                             if (rng() % 4 != 0) indices[count++] = first + k;
                         const int depth = int(rng() % 10);
                         const int dim = dims::bounceBase(depth) + int(rng() % 7);
-                        float x[kCameraPacketSamples];
-                        Vec2f xy[kCameraPacketSamples];
-                        drawLanes1D(a, pixel, indices, count, dim, x);
-                        drawLanes2D(a, pixel, indices, count, dim, xy);
-                        for (int j = 0; j < count; ++j) {
-                            b.startPixelSample(pixel, indices[j], dim);
-                            EXPECT_EQ(x[j], b.get1D()) << name << " dim " << dim;
-                            b.startPixelSample(pixel, indices[j], dim);
-                            const Vec2f expected = b.get2D();
-                            EXPECT_EQ(xy[j].x, expected.x) << name << " dim " << dim;
-                            EXPECT_EQ(xy[j].y, expected.y) << name << " dim " << dim;
-                        }
+                        expectLanesEqualEachDraw(a, b, pixel, indices, count, dim, name);
                     }
                 },
                 lanes);
@@ -393,18 +401,7 @@ TEST(SamplerValues, LaneDrawsAtTheirLimits) {
                         for (int k = 0; k < count; ++k) indices[k] = k * 3 % 8;
                         for (int dim : {2, 61, 125, 126, 127, 128, 131}) {
                             const Vec2i pixel{count, 3};
-                            float x[kCameraPacketSamples];
-                            Vec2f xy[kCameraPacketSamples];
-                            drawLanes1D(a, pixel, indices, count, dim, x);
-                            drawLanes2D(a, pixel, indices, count, dim, xy);
-                            for (int j = 0; j < count; ++j) {
-                                b.startPixelSample(pixel, indices[j], dim);
-                                EXPECT_EQ(x[j], b.get1D()) << name << " dim " << dim;
-                                b.startPixelSample(pixel, indices[j], dim);
-                                const Vec2f expected = b.get2D();
-                                EXPECT_EQ(xy[j].x, expected.x) << name << " dim " << dim;
-                                EXPECT_EQ(xy[j].y, expected.y) << name << " dim " << dim;
-                            }
+                            expectLanesEqualEachDraw(a, b, pixel, indices, count, dim, name);
                         }
                     }
                 },

@@ -52,14 +52,16 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
     for (int d = 0; d < kTabulatedBases && primes[d] <= kMaxPairBase; ++d)
         pairTotal += size_t(primes[d]) * size_t(primes[d]) * size_t(floatDigitCount(primes[d]) / 2);
     pairTables.resize(pairTotal);
-    pairTables32.resize(pairTotal);
     uint16_t* nextPairs = pairTables.data();
     tails.resize(size_t(kTabulatedBases) * kMaxDigits);
     powers.resize(size_t(kTabulatedBases) * kMaxDigits);
     dimensions.reserve(kTabulatedBases);
     rotations.resize(table.size() + kTabulatedBases);
+    // The lane draws' 32-bit tables: sized here, since dimensions point into
+    // them; the copies of the 16-bit ones are filled after the loop.
     permutations32.assign(table.begin(), table.end());
     rotations32.resize(rotations.size());
+    pairTables32.resize(pairTables.size());
     size_t scrambledTotal = 0;
     for (int d = 0; d < kTabulatedBases; ++d)
         scrambledTotal += size_t(primes[d]) * size_t(floatDigitCount(primes[d]));
@@ -83,18 +85,13 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         rotation[0] = uint16_t(owenRotation(owenHash, 0, 0, uint32_t(base)));
         for (int d0 = 0; d0 < base; ++d0)
             rotation[1 + d0] = uint16_t(owenRotation(owenHash, 1, uint64_t(d0), uint32_t(base)));
-        std::copy(rotation, rotation + 1 + base,
-                  rotations32.begin() + (rotation - rotations.data()));
         uint16_t* pairs = base <= kMaxPairBase ? nextPairs : nullptr;
         if (pairs) {
             const uint32_t b = uint32_t(base);
             for (int k = 0; k + 1 < digits; k += 2)
-                for (uint32_t q = 0; q < b * b; ++q) {
-                    const auto pair = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
-                                               perm[rotateDigit(q / b, shift[k + 1], b)]);
-                    pairTables32[size_t(nextPairs - pairTables.data())] = pair;
-                    *nextPairs++ = pair;
-                }
+                for (uint32_t q = 0; q < b * b; ++q)
+                    *nextPairs++ = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
+                                            perm[rotateDigit(q / b, shift[k + 1], b)]);
         }
         int32_t* scrambled = nextScrambled;
         for (int k = 0; k < digits; ++k)
@@ -108,6 +105,8 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
                             rotations32.data() + (rotation - rotations.data()), 1.0 / base,
                             1.0 / (double(base) * base)});
     }
+    std::copy(rotations.begin(), rotations.end(), rotations32.begin());
+    std::copy(pairTables.begin(), pairTables.end(), pairTables32.begin());
 }
 
 std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed) {

@@ -187,10 +187,8 @@ class HaltonSamplerT {
     void get1DLanes(Vec2i p, const int* indices, int count, int dim,
                     float* out) requires(kScrambling != HaltonScrambling::None) {
         uint64_t a[kCameraPacketSamples];
-        if (!laneIndices(p, indices, count, dim, 1, a)) {
-            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
-            return;
-        }
+        if (!laneIndices(p, indices, count, dim, 1, a))
+            return drawEachLane1D(*this, p, indices, count, dim, out);
         float x[kCameraPacketSamples];
         scrambleLanes(dimension_ - 1, a, count, x);
         for (int j = 0; j < count; ++j) out[j] = x[j];
@@ -198,10 +196,8 @@ class HaltonSamplerT {
     void get2DLanes(Vec2i p, const int* indices, int count, int dim,
                     Vec2f* out) requires(kScrambling != HaltonScrambling::None) {
         uint64_t a[kCameraPacketSamples];
-        if (!laneIndices(p, indices, count, dim, 2, a)) {
-            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
-            return;
-        }
+        if (!laneIndices(p, indices, count, dim, 2, a))
+            return drawEachLane2D(*this, p, indices, count, dim, out);
         float x[kCameraPacketSamples], y[kCameraPacketSamples];
         scrambleLanes(dimension_ - 2, a, count, x);
         scrambleLanes(dimension_ - 1, a, count, y);

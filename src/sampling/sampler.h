@@ -89,6 +89,17 @@ concept DrawsLanes = Sampler<S> && requires(S s, Vec2i p, const int* i, float* x
     s.get2DLanes(p, i, 0, 0, xy);
 };
 
+// Lane draws without a sampler's own path: each lane positioned and drawn
+// by itself (also the samplers' fallback where their lane path does not apply).
+template <Sampler S>
+void drawEachLane1D(S& s, Vec2i pixel, const int* indices, int count, int dim, float* out) {
+    for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get1D();
+}
+template <Sampler S>
+void drawEachLane2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2f* out) {
+    for (int j = 0; j < count; ++j) s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
+}
+
 // Lane draws, for the batched integrator: dimension `dim` (1D), or `dim` and
 // `dim` + 1 (2D), of samples indices[0 … count) of one pixel, count ≤
 // kCameraPacketSamples. A sampler whose work for a dimension is shared by a
@@ -101,8 +112,7 @@ void drawLanes1D(S& s, Vec2i pixel, const int* indices, int count, int dim, floa
     if constexpr (DrawsLanes<S>) {
         s.get1DLanes(pixel, indices, count, dim, out);
     } else {
-        for (int j = 0; j < count; ++j)
-            s.startPixelSample(pixel, indices[j], dim), out[j] = s.get1D();
+        drawEachLane1D(s, pixel, indices, count, dim, out);
     }
 }
 template <Sampler S>
@@ -110,8 +120,7 @@ void drawLanes2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2
     if constexpr (DrawsLanes<S>) {
         s.get2DLanes(pixel, indices, count, dim, out);
     } else {
-        for (int j = 0; j < count; ++j)
-            s.startPixelSample(pixel, indices[j], dim), out[j] = s.get2D();
+        drawEachLane2D(s, pixel, indices, count, dim, out);
     }
 }
 

@@ -213,10 +213,7 @@ class OwenSobolSampler {
     // side kernel does all eight lanes; one or two live lanes are cheaper
     // drawn one by one.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
-        if (count <= kFewLanes) {
-            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get1D();
-            return;
-        }
+        if (count <= kFewLanes) return drawEachLane1D(*this, p, indices, count, dim, out);
         startPixelSample(p, indices[0], dim);
         const Seeds k = seeds(dim, 0x31, seeds1D_);
         uint32_t index[kCameraPacketSamples];
@@ -227,10 +224,7 @@ class OwenSobolSampler {
         dimension_ = dim + 1;
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
-        if (count <= kFewLanes) {
-            for (int j = 0; j < count; ++j) startPixelSample(p, indices[j], dim), out[j] = get2D();
-            return;
-        }
+        if (count <= kFewLanes) return drawEachLane2D(*this, p, indices, count, dim, out);
         startPixelSample(p, indices[0], dim);
         const Seeds k = seeds(dim, 0x32, seeds2D_);
         uint32_t index[kCameraPacketSamples];
