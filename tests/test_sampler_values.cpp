@@ -353,6 +353,21 @@ void expectLanesEqualEachDraw(S& lanes, S& single, Vec2i pixel, const int* indic
     }
 }
 
+// drawPixelLanes (the camera rays' positions in the pixel) of `lanes` against
+// startPixelSample at dimension 0 + getPixel2D of `single`, bit for bit.
+template <typename S>
+void expectPixelLanesEqualEachDraw(S& lanes, S& single, Vec2i pixel, const int* indices, int count,
+                                   const std::string& name) {
+    Vec2f xy[kCameraPacketSamples];
+    drawPixelLanes(lanes, pixel, indices, count, xy);
+    for (int j = 0; j < count; ++j) {
+        single.startPixelSample(pixel, indices[j], dims::kPixel);
+        const Vec2f expected = single.getPixel2D();
+        EXPECT_EQ(xy[j].x, expected.x) << name << " pixel lane " << j;
+        EXPECT_EQ(xy[j].y, expected.y) << name << " pixel lane " << j;
+    }
+}
+
 TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
     // drawLanes1D/2D, which the batched integrator uses, against
     // startPixelSample + get1D/get2D of a second copy of the sampler: live
@@ -375,6 +390,7 @@ TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
                         const int depth = int(rng() % 10);
                         const int dim = dims::bounceBase(depth) + int(rng() % 7);
                         expectLanesEqualEachDraw(a, b, pixel, indices, count, dim, name);
+                        expectPixelLanesEqualEachDraw(a, b, pixel, indices, count, name);
                     }
                 },
                 lanes);
@@ -389,7 +405,8 @@ TEST(SamplerValues, LaneDrawsAtTheirLimits) {
     // between a pixel's samples is 2^16 · 3^10 ≈ 3.9 · 10^9, so from sample 1
     // on every index is past 2^32, where the Halton lanes hand over to the
     // scalar loops.
-    for (const char* name : {"halton", "halton-rd", "halton-owen", "sobol-owen"}) {
+    for (const char* name :
+         {"halton", "halton-rd", "halton-owen", "sobol-owen", "zsobol", "stratified"}) {
         for (Vec2i resolution : {Vec2i{32, 16}, Vec2i{65536, 59049}}) {
             const SamplerConfig config{64, 11, resolution};
             AnySampler lanes = makeSampler(name, config), single = makeSampler(name, config);
@@ -403,6 +420,7 @@ TEST(SamplerValues, LaneDrawsAtTheirLimits) {
                             const Vec2i pixel{count, 3};
                             expectLanesEqualEachDraw(a, b, pixel, indices, count, dim, name);
                         }
+                        expectPixelLanesEqualEachDraw(a, b, Vec2i{count, 3}, indices, count, name);
                     }
                 },
                 lanes);

@@ -72,12 +72,13 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
     // The pixel's camera rays are nearly parallel: trace them as packets.
     for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
         const int count = std::min(kPacketWidth, spp - i0);
+        int indices[kPacketWidth];
+        for (int k = 0; k < count; ++k) indices[k] = i0 + k;
+        Vec2f u[kPacketWidth];
+        drawPixelLanes(sampler, pixel, indices, count, u);
         Vec3f dirs[kPacketWidth];
-        for (int k = 0; k < count; ++k) {
-            sampler.startPixelSample(pixel, i0 + k, dims::kPixel);
-            const Vec2f u = sampler.getPixel2D();
-            dirs[k] = camera.direction(float(pixel.x) + u.x, float(pixel.y) + u.y);
-        }
+        for (int k = 0; k < count; ++k)
+            dirs[k] = camera.direction(float(pixel.x) + u[k].x, float(pixel.y) + u[k].y);
         SurfaceInteraction first[kPacketWidth];
         bool found[kPacketWidth];
         scene.intersectPacket(camera.eye(), dirs, count, first, found);

@@ -261,26 +261,50 @@ constexpr uint32_t xorScramble(uint32_t v, uint32_t seed) {
 // on the smallest power-of-two range covering n (odd multiplies and xorshifts
 // are invertible modulo 2^w) is iterated until it lands inside [0, n) — "cycle
 // walking", as in Kensler 2013, "Correlated Multi-Jittered Sampling".
-inline uint32_t permutationElement(uint32_t i, uint32_t n, uint64_t seed) {
-    if (n <= 1) return 0;
-    uint32_t mask = n - 1;
-    mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
-    const int bits = 32 - __builtin_clz(mask);
-    const int shift = bits / 2 + 1;
+//
+// The range's mask and shifts depend on n only: a caller drawing many elements
+// of permutations of one n keeps them in a PermutationDomain.
+struct PermutationDomain {
+    explicit PermutationDomain(uint32_t size) : n(size) {
+        if (n <= 1) return;
+        mask = n - 1;
+        mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8;
+        mask |= mask >> 16;
+        const int bits = 32 - __builtin_clz(mask);
+        shift = bits / 2 + 1;
+        innerShift = shift > 1 ? shift - 1 : 1;
+    }
+    uint32_t n;
+    uint32_t mask = 0;  // 2^w − 1 for the smallest 2^w ≥ n
+    int shift = 1, innerShift = 1;
+};
+
+// One round of the bijection on [0, 2^w).
+inline uint32_t permuteInRange(uint32_t i, const PermutationDomain& d, uint32_t s0, uint32_t s1) {
+    const uint32_t mask = d.mask;
+    i ^= s0;
+    i = (i * 0xe170893du) & mask;
+    i ^= i >> d.shift;
+    i = (i + s1) & mask;
+    i = (i * (0x0929eb3fu | 1u)) & mask;
+    i ^= (i & mask) >> d.innerShift;
+    i = (i * (s1 | 1u)) & mask;
+    i ^= i >> d.shift;
+    i = (i * 0x6935fa69u) & mask;
+    return i ^ (s0 & mask);
+}
+
+inline uint32_t permutationElement(uint32_t i, const PermutationDomain& d, uint64_t seed) {
+    if (d.n <= 1) return 0;
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
     do {
-        i ^= s0;
-        i = (i * 0xe170893du) & mask;
-        i ^= i >> shift;
-        i = (i + s1) & mask;
-        i = (i * (0x0929eb3fu | 1u)) & mask;
-        i ^= (i & mask) >> (shift > 1 ? shift - 1 : 1);
-        i = (i * (s1 | 1u)) & mask;
-        i ^= i >> shift;
-        i = (i * 0x6935fa69u) & mask;
-        i ^= s0 & mask;
-    } while (i >= n);
+        i = permuteInRange(i, d, s0, s1);
+    } while (i >= d.n);
     return i;
+}
+
+inline uint32_t permutationElement(uint32_t i, uint32_t n, uint64_t seed) {
+    return permutationElement(i, PermutationDomain(n), seed);
 }
 
 // 32-bit seed from a 64-bit hash (the two halves folded).

@@ -124,6 +124,26 @@ void drawLanes2D(S& s, Vec2i pixel, const int* indices, int count, int dim, Vec2
     }
 }
 
+// Does S draw the pixel dimensions of several samples itself? Those whose
+// getPixel2D is get2D at dimension 0 and that draw lanes say so.
+template <typename S>
+concept DrawsPixelLanes = Sampler<S> && requires(S s, Vec2i p, const int* i, Vec2f* xy) {
+    s.getPixel2DLanes(p, i, 0, xy);
+};
+
+// The positions inside the pixel (dimensions 0 and 1) of samples
+// indices[0 … count) of one pixel: out[j] is, bit for bit,
+// startPixelSample(pixel, indices[j], dims::kPixel) then getPixel2D().
+template <Sampler S>
+void drawPixelLanes(S& s, Vec2i pixel, const int* indices, int count, Vec2f* out) {
+    if constexpr (DrawsPixelLanes<S>) {
+        s.getPixel2DLanes(pixel, indices, count, out);
+    } else {
+        for (int j = 0; j < count; ++j)
+            s.startPixelSample(pixel, indices[j], dims::kPixel), out[j] = s.getPixel2D();
+    }
+}
+
 // A path vertex's draws for the live paths of a batch (the paths' sample
 // indices): the light choice (when `choice`), the light point and the BSDF
 // direction of the vertex whose block starts at dimension `base`. A sampler

@@ -30,4 +30,26 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
     baseline::owenSobol2D(index, indexSeed, xSeed, ySeed, x, y);
 }
 
+void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x) {
+    if (cpuHasAvx2()) return avx2::owenScrambleReversed(reversed, seed, x);
+    baseline::owenScrambleReversed(reversed, seed, x);
+}
+
+void permutationElementLanes(const uint32_t* i, const PermutationDomain& d, uint64_t seed,
+                             uint32_t* out) {
+    if (d.n <= 1) {
+        for (int j = 0; j < kCameraPacketSamples; ++j) out[j] = 0;
+        return;
+    }
+    const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
+    if (cpuHasAvx2())
+        avx2::permutationRound(i, d, s0, s1, out);
+    else
+        baseline::permutationRound(i, d, s0, s1, out);
+    // Cycle walking (lowdiscrepancy.h) for the lanes the first round left
+    // outside [0, n): none when n is a power of two.
+    for (int j = 0; j < kCameraPacketSamples; ++j)
+        while (out[j] >= d.n) out[j] = permuteInRange(out[j], d, s0, s1);
+}
+
 }  // namespace pathlab

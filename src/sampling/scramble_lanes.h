@@ -1,12 +1,13 @@
-// The arithmetic of `sobol-owen`'s lane draws (sampler.h, drawLanes1D/2D):
-// kCameraPacketSamples samples side by side, pure 32-bit integer operations
-// in SIMD lanes. Out of line so that it can be compiled for AVX2 and chosen at
-// run time (eight lanes in one register; GCC does not vectorise the 32-bit
-// multiplies for the x86-64 baseline); the bits are the same whichever
-// version runs.
+// The arithmetic of `sobol-owen`'s, `zsobol`'s and `stratified`'s lane draws (sampler.h,
+// drawLanes1D/2D): kCameraPacketSamples samples side by side, pure 32-bit integer operations in
+// SIMD lanes. Out of line so that it can be compiled for AVX2 and chosen at run time (eight lanes
+// in one register; GCC does not vectorise the 32-bit multiplies for the x86-64 baseline); the bits
+// are the same whichever version runs.
 #pragma once
 
 #include <cstdint>
+
+#include "sampling/lowdiscrepancy.h"
 
 namespace pathlab {
 
@@ -19,5 +20,14 @@ namespace pathlab {
 void owenSobolLanes1D(const uint32_t* index, uint32_t indexSeed, uint32_t valueSeed, float* x);
 void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed, uint32_t ySeed,
                       float* x, float* y);
+
+// Owen scrambles of values given bit-reversed (zsobol's permuted indices and
+// Sobol' dimension 1): x = owenScramble(R(reversed), seed) =
+// R(L_seed(reversed)), as floats.
+void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x);
+
+// permutationElement(i[j], d.n, seed) (lowdiscrepancy.h) for every lane.
+void permutationElementLanes(const uint32_t* i, const PermutationDomain& d, uint64_t seed,
+                             uint32_t* out);
 
 }  // namespace pathlab

@@ -207,6 +207,9 @@ class OwenSobolSampler {
     }
     static uint64_t pixelHash(Vec2i p, uint64_t seed) { return hashValues(p.x, p.y, seed); }
     Vec2f getPixel2D() { return get2D(); }
+    void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
+        get2DLanes(p, indices, count, dims::kPixel, out);
+    }
 
     // Lane draws (sampler.h): the dimension's seeds once for all the lanes,
     // the lanes' bit operations side by side (scramble_lanes.h). The side by
@@ -318,22 +321,48 @@ class ZSobolSampler {
                     owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
         }
         CachedDimension& c = cached(d);
-        const uint64_t low = lowDigits(d, c);
-        // Sobol' dimension 1 is linear over GF(2) and the high and low index
-        // bits are disjoint, so its value is the cached high part XOR the
-        // low part; both are kept bit-reversed, as owenScramble wants them.
-        // The low part a byte at a time from tables: a loop over its set bits
-        // would end at an unpredictable count.
-        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
-                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
-                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
-        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
-        const uint64_t xy =
-            reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
-                              laineKarrasPermutation(reversed1, c.seeds2D[1]));
-        return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
+        return scrambled2D(c, lowDigits(d, c));
     }
     Vec2f getPixel2D() { return get2D(); }
+    void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
+        get2DLanes(p, indices, count, dims::kPixel, out);
+    }
+
+    // Lane draws (sampler.h): the dimension's cache entry once for the live
+    // paths, their low digits lane after lane (each lane's last-level node is
+    // usually the lane before's), then their scrambles side by side in SIMD
+    // lanes (scramble_lanes.h). One or two live paths are cheaper drawn one
+    // by one.
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        if (count <= kFewLanes || !lanesCached(indices, count, dim))
+            return drawEachLane1D(*this, p, indices, count, dim, out);
+        startPixelSample(p, indices[0], dim);
+        CachedDimension& c = cached(dim);
+        uint32_t index[kCameraPacketSamples] = {};
+        for (int j = 0; j < count; ++j)
+            index[j] = uint32_t(c.highIndex | laneLowDigits(c, dim, indices[j]));
+        float x[kCameraPacketSamples];
+        owenScrambleReversedLanes(index, c.seed1D, x);
+        for (int j = 0; j < count; ++j) out[j] = x[j];
+        dimension_ = dim + 1;
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        if (count <= kFewLanes || !lanesCached(indices, count, dim))
+            return drawEachLane2D(*this, p, indices, count, dim, out);
+        startPixelSample(p, indices[0], dim);
+        CachedDimension& c = cached(dim);
+        uint32_t index[kCameraPacketSamples] = {}, reversed1[kCameraPacketSamples] = {};
+        for (int j = 0; j < count; ++j) {
+            const uint64_t low = laneLowDigits(c, dim, indices[j]);
+            index[j] = uint32_t(c.highIndex | low);
+            reversed1[j] = reversedSobol1(c, low);
+        }
+        float x[kCameraPacketSamples], y[kCameraPacketSamples];
+        owenScrambleReversedLanes(index, c.seeds2D[0], x);
+        owenScrambleReversedLanes(reversed1, c.seeds2D[1], y);
+        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+        dimension_ = dim + 2;
+    }
 
     // The permuted global index for the current pixel sample in `dimension`
     // (Ahmed & Wonka 2020, §4: random permutation of each base-4 digit chosen
@@ -378,6 +407,39 @@ class ZSobolSampler {
         return c;
     }
     void fillHighDigits(CachedDimension& c) const;
+    // Lane draws share the dimension's cache entry and the pixel's high
+    // digits: a cached dimension, every index inside the pixel's samples.
+    bool lanesCached(const int* indices, int count, int dim) const {
+        if (dim >= kCachedDimensions) return false;
+        for (int j = 0; j < count; ++j)
+            if (unsigned(indices[j]) >= unsigned(spp_)) return false;
+        return true;
+    }
+    static constexpr int kFewLanes = 2;
+    uint64_t laneLowDigits(CachedDimension& c, int dim, int index) {
+        mortonIndex_ = pixelMorton_ | uint64_t(index);
+        return lowDigits(dim, c);
+    }
+    // Sobol' dimension 1 of the permuted index, bit-reversed. It is linear
+    // over GF(2) and the high and low index bits are disjoint, so its value
+    // is the cached high part XOR the low part. The low part a byte at a
+    // time from tables: a loop over its set bits would end at an
+    // unpredictable count.
+    uint32_t reversedSobol1(const CachedDimension& c, uint64_t low) const {
+        uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
+                             reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
+                             reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
+        if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
+        return reversed1;
+    }
+    // Dimensions d, d + 1 from the permuted index's low digits (both kept
+    // bit-reversed, as owenScramble wants them).
+    Vec2f scrambled2D(const CachedDimension& c, uint64_t low) const {
+        const uint64_t xy =
+            reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
+                              laineKarrasPermutation(reversedSobol1(c, low), c.seeds2D[1]));
+        return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
+    }
     // The permuted digits below the pixel's: the ⌈log2 spp / 2⌉ digits that
     // change from sample to sample (same loop as referenceSampleIndex's). A
     // digit's permutation depends on the digits above it only, so for one
@@ -392,13 +454,21 @@ class ZSobolSampler {
     // (samples 4k … 4k + 3 share one, or 2k, 2k + 1 for an odd log2 spp): that
     // node's permutation and the digits above it are kept per dimension, and
     // such a draw reads one digit instead of walking the tree from the root.
-    uint64_t lowDigits(int d, CachedDimension& c) {
+    //
+    // The check for the last draw's node is inlined into the draws; the walk
+    // from the root is not.
+    [[gnu::always_inline]] uint64_t lowDigits(int d, CachedDimension& c) {
         const int odd = log2Spp_ & 1;
         if (lowNodes_ == 0) return lowDigitsUncached(c.salt);
         const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
         const int lastBits = odd ? 1 : 2;
         if ((sample >> lastBits) == c.lastParent)
             return c.lastPrefix | lastLevelDigits(c.lastPermutation, sample, odd);
+        return walkLowDigits(d, c, sample);
+    }
+    [[gnu::noinline]] uint64_t walkLowDigits(int d, CachedDimension& c, uint64_t sample) {
+        const int odd = log2Spp_ & 1;
+        const int lastBits = odd ? 1 : 2;
         // The tree is stored level after level, each node's children 4n + 1 … 4n + 4
         // (a 4-ary heap): the node at a level is found from the one above it
         // and the digit just read, without the level's offset.

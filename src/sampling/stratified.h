@@ -14,13 +14,14 @@
 #include "sampling/pcg_cursor.h"
 #include "sampling/pixel_dimension_cache.h"
 #include "sampling/sampler.h"
+#include "sampling/scramble_lanes.h"
 
 namespace pathlab {
 
 class StratifiedSampler {
   public:
     explicit StratifiedSampler(const SamplerConfig& c)
-        : spp_(std::max(1, c.samplesPerPixel)), seed_(c.seed) {
+        : spp_(std::max(1, c.samplesPerPixel)), seed_(c.seed), strata_(uint32_t(spp_)) {
         int nx = 1;
         for (int d = 1; d * d <= spp_; ++d)
             if (spp_ % d == 0) nx = d;
@@ -41,22 +42,77 @@ class StratifiedSampler {
 
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
-        if (p.x != pixel_.x || p.y != pixel_.y)
-            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear();
-        index_ = static_cast<uint32_t>(index % spp_);
+        setPixel(p);
+        index_ = sampleInPixel(index);
         dimension_ = dim;
         cursor_.seek(pixelHash_, index, dim);
     }
     float get1D() {
-        const uint32_t stratum = permutationElement(index_, spp_, strataHash());
+        const uint32_t stratum = permutationElement(index_, strata_, strataHash());
         ++dimension_;
-        const float v = float(stratum) + cursor_.nextFloat();
-        return clampSample(powerOfTwo_ ? v * invSpp_ : v / float(spp_));
+        return jittered1D(stratum, cursor_.nextFloat());
     }
     Vec2f get2D() {
-        const uint32_t stratum = permutationElement(index_, spp_, strataHash());
+        const uint32_t stratum = permutationElement(index_, strata_, strataHash());
         dimension_ += 2;
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
+        return jittered2D(stratum, dx, dy);
+    }
+    // Lane draws (sampler.h): the permutation's seed is the pixel's and the
+    // dimension's, shared by all lanes; the lanes' strata are computed side by
+    // side in SIMD lanes (scramble_lanes.h).
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        uint32_t strata[kCameraPacketSamples];
+        lanesStrata(p, indices, count, dim, strata);
+        for (int j = 0; j < count; ++j) {
+            cursor_.seek(pixelHash_, indices[j], dim);
+            out[j] = jittered1D(strata[j], cursor_.nextFloat());
+        }
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        uint32_t strata[kCameraPacketSamples];
+        lanesStrata(p, indices, count, dim, strata);
+        for (int j = 0; j < count; ++j) {
+            cursor_.seek(pixelHash_, indices[j], dim);
+            const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
+            out[j] = jittered2D(strata[j], dx, dy);
+        }
+    }
+    Vec2f getPixel2D() { return get2D(); }
+    void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
+        get2DLanes(p, indices, count, dims::kPixel, out);
+    }
+
+    int xStrata() const { return xStrata_; }
+    int yStrata() const { return yStrata_; }
+
+  private:
+    void setPixel(Vec2i p) {
+        if (p.x != pixel_.x || p.y != pixel_.y)
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear();
+    }
+    // The renderer's indices are below spp already; the division is for others.
+    uint32_t sampleInPixel(int index) const {
+        return static_cast<uint32_t>(unsigned(index) < unsigned(spp_) ? index : index % spp_);
+    }
+    // The permutation's seed for (pixel, dimension): four chained hash rounds,
+    // the same for all of a pixel's samples.
+    uint64_t strataHash() {
+        return strataHashes_.get(dimension_,
+                                 [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); });
+    }
+    void lanesStrata(Vec2i p, const int* indices, int count, int dim, uint32_t* strata) {
+        setPixel(p);
+        dimension_ = dim;
+        uint32_t index[kCameraPacketSamples] = {};
+        for (int j = 0; j < count; ++j) index[j] = sampleInPixel(indices[j]);
+        permutationElementLanes(index, strata_, strataHash(), strata);
+    }
+    float jittered1D(uint32_t stratum, float u) const {
+        const float v = float(stratum) + u;
+        return clampSample(powerOfTwo_ ? v * invSpp_ : v / float(spp_));
+    }
+    Vec2f jittered2D(uint32_t stratum, float dx, float dy) const {
         if (powerOfTwo_) {
             const auto x = float(stratum & uint32_t(xStrata_ - 1)), y = float(stratum >> xShift_);
             return {clampSample((x + dx) * invX_), clampSample((y + dy) * invY_)};
@@ -64,22 +120,11 @@ class StratifiedSampler {
         const int x = int(stratum) % xStrata_, y = int(stratum) / xStrata_;
         return {clampSample((x + dx) / float(xStrata_)), clampSample((y + dy) / float(yStrata_))};
     }
-    Vec2f getPixel2D() { return get2D(); }
-
-    int xStrata() const { return xStrata_; }
-    int yStrata() const { return yStrata_; }
-
-  private:
-    // The permutation's seed for (pixel, dimension): four chained hash rounds,
-    // the same for all of a pixel's samples.
-    uint64_t strataHash() {
-        return strataHashes_.get(dimension_,
-                                 [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); });
-    }
     static float clampSample(float v) { return v < kOneMinusEpsilon ? v : kOneMinusEpsilon; }
 
     int spp_;
     uint64_t seed_;
+    PermutationDomain strata_;  // of the spp_ strata
     int xStrata_ = 1, yStrata_ = 1;
     bool powerOfTwo_ = false;
     int xShift_ = 0;
