@@ -35,21 +35,26 @@ void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x
     baseline::owenScrambleReversed(reversed, seed, x);
 }
 
-void permutationElementLanes(const uint32_t* i, const PermutationDomain& d, uint64_t seed,
-                             uint32_t* out) {
+void permutationBlock(uint32_t first, const PermutationDomain& d, uint64_t seed, uint32_t* out) {
     if (d.n <= 1) {
-        for (int j = 0; j < kCameraPacketSamples; ++j) out[j] = 0;
+        for (int k = 0; k < kCameraPacketSamples; ++k) out[k] = 0;
         return;
     }
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
     if (cpuHasAvx2())
-        avx2::permutationRound(i, d, s0, s1, out);
+        avx2::permutationRound(first, d, s0, s1, out);
     else
-        baseline::permutationRound(i, d, s0, s1, out);
-    // Cycle walking (lowdiscrepancy.h) for the lanes the first round left
-    // outside [0, n): none when n is a power of two.
-    for (int j = 0; j < kCameraPacketSamples; ++j)
-        while (out[j] >= d.n) out[j] = permuteInRange(out[j], d, s0, s1);
+        baseline::permutationRound(first, d, s0, s1, out);
+    // Cycle walking (lowdiscrepancy.h) for the elements the first round left
+    // outside [0, n): none when n is a power of two. Indices past n have no
+    // image (their cycle may never enter [0, n)): 0.
+    for (int k = 0; k < kCameraPacketSamples; ++k) {
+        if (first + uint32_t(k) >= d.n) {
+            out[k] = 0;
+            continue;
+        }
+        while (out[k] >= d.n) out[k] = permuteInRange(out[k], d, s0, s1);
+    }
 }
 
 }  // namespace pathlab

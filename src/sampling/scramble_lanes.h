@@ -26,8 +26,11 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
 // R(L_seed(reversed)), as floats.
 void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x);
 
-// permutationElement(i[j], d.n, seed) (lowdiscrepancy.h) for every lane.
-void permutationElementLanes(const uint32_t* i, const PermutationDomain& d, uint64_t seed,
-                             uint32_t* out);
+// permutationElement(first + k, d.n, seed) (lowdiscrepancy.h) for k in
+// [0, kCameraPacketSamples): the images of a camera packet's sample indices
+// (0 for those from n on, which have none).
+// The indices are made in the SIMD register, not loaded: a vector load of
+// values just stored one by one would stall on store forwarding.
+void permutationBlock(uint32_t first, const PermutationDomain& d, uint64_t seed, uint32_t* out);
 
 }  // namespace pathlab

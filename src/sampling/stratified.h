@@ -104,9 +104,19 @@ class StratifiedSampler {
     void lanesStrata(Vec2i p, const int* indices, int count, int dim, uint32_t* strata) {
         setPixel(p);
         dimension_ = dim;
-        uint32_t index[kCameraPacketSamples] = {};
-        for (int j = 0; j < count; ++j) index[j] = sampleInPixel(indices[j]);
-        permutationElementLanes(index, strata_, strataHash(), strata);
+        const uint64_t seed = strataHash();
+        const uint32_t first = sampleInPixel(indices[0]);
+        bool inBlock = true;
+        for (int j = 0; j < count; ++j)
+            inBlock &= sampleInPixel(indices[j]) - first < uint32_t(kCameraPacketSamples);
+        if (!inBlock) {
+            for (int j = 0; j < count; ++j)
+                strata[j] = permutationElement(sampleInPixel(indices[j]), strata_, seed);
+            return;
+        }
+        uint32_t block[kCameraPacketSamples];
+        permutationBlock(first, strata_, seed, block);
+        for (int j = 0; j < count; ++j) strata[j] = block[sampleInPixel(indices[j]) - first];
     }
     float jittered1D(uint32_t stratum, float u) const {
         const float v = float(stratum) + u;
