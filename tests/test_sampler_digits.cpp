@@ -294,25 +294,20 @@ void expectZSobolDrawMatchesReference(ZSobolSampler& s, int d, uint64_t seed, bo
 // The renderer's order: a pixel's samples one after another, each drawing its
 // dimensions in order, and some paths ending early — the draws that reuse the
 // previous draw's node of the last tree level must give the reference values.
-TEST(PermutationDigits, BlocksEqualTheElementByElementPermutation) {
-    // permutationBlock (stratified's lane draws) against permutationElement:
-    // sizes that are powers of two (one round), that are not (cycle walking),
-    // smaller than a block (elements past n have no image: 0), and blocks
-    // that start anywhere. Each permutationElement is checked to be a
-    // permutation of [0, n) on the way.
+TEST(PermutationDigits, TablesEqualTheElementByElementPermutation) {
+    // permutationTable (stratified's strata) against permutationElement:
+    // sizes that are powers of two (one round) and that are not (cycle
+    // walking). Each is checked to be a permutation of [0, n) on the way.
     for (uint32_t n : {1u, 2u, 3u, 5u, 8u, 9u, 24u, 64u, 100u, 1024u}) {
         for (uint64_t seed : {uint64_t(0), uint64_t(0x9e3779b97f4a7c15), uint64_t(12345)}) {
-            const PermutationDomain domain(n);
+            std::vector<uint32_t> table(n);
+            permutationTable(PermutationDomain(n), seed, table.data());
             std::vector<int> hits(n, 0);
-            for (uint32_t i = 0; i < n; ++i) ++hits[permutationElement(i, n, seed)];
-            EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), int(n)) << "n " << n;
-            for (uint32_t first = 0; first < n; first += (n > 64 ? 37 : 1)) {
-                uint32_t block[kCameraPacketSamples];
-                permutationBlock(first, domain, seed, block);
-                for (uint32_t k = 0; k < uint32_t(kCameraPacketSamples); ++k)
-                    EXPECT_EQ(block[k], first + k < n ? permutationElement(first + k, n, seed) : 0u)
-                        << "n " << n << " first " << first << " k " << k;
+            for (uint32_t i = 0; i < n; ++i) {
+                EXPECT_EQ(table[i], permutationElement(i, n, seed)) << "n " << n << " i " << i;
+                ++hits[permutationElement(i, n, seed)];
             }
+            EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), int(n)) << "n " << n;
         }
     }
 }

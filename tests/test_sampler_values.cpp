@@ -374,7 +374,10 @@ TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
     // lanes of a camera packet (ascending subsets of its samples), pixels
     // revisited, dimensions past the per-pixel caches, spp not a power of two.
     for (const std::string& name : allSamplerNames()) {
-        for (int spp : {64, 24}) {
+        // stratified tabulates its permutations up to 1024 spp.
+        const std::vector<int> spps =
+            name == "stratified" ? std::vector<int>{64, 24, 2048} : std::vector<int>{64, 24};
+        for (int spp : spps) {
             const SamplerConfig config{spp, 7, {32, 16}};
             AnySampler lanes = makeSampler(name, config), single = makeSampler(name, config);
             std::mt19937 rng(spp);

@@ -35,26 +35,20 @@ void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x
     baseline::owenScrambleReversed(reversed, seed, x);
 }
 
-void permutationBlock(uint32_t first, const PermutationDomain& d, uint64_t seed, uint32_t* out) {
+void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out) {
     if (d.n <= 1) {
-        for (int k = 0; k < kCameraPacketSamples; ++k) out[k] = 0;
+        if (d.n == 1) out[0] = 0;
         return;
     }
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
     if (cpuHasAvx2())
-        avx2::permutationRound(first, d, s0, s1, out);
+        avx2::permutationRound(d, s0, s1, out);
     else
-        baseline::permutationRound(first, d, s0, s1, out);
+        baseline::permutationRound(d, s0, s1, out);
     // Cycle walking (lowdiscrepancy.h) for the elements the first round left
-    // outside [0, n): none when n is a power of two. Indices past n have no
-    // image (their cycle may never enter [0, n)): 0.
-    for (int k = 0; k < kCameraPacketSamples; ++k) {
-        if (first + uint32_t(k) >= d.n) {
-            out[k] = 0;
-            continue;
-        }
-        while (out[k] >= d.n) out[k] = permuteInRange(out[k], d, s0, s1);
-    }
+    // outside [0, n): none when n is a power of two.
+    for (uint32_t i = 0; i < d.n; ++i)
+        while (out[i] >= d.n) out[i] = permuteInRange(out[i], d, s0, s1);
 }
 
 }  // namespace pathlab

@@ -26,11 +26,9 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
 // R(L_seed(reversed)), as floats.
 void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x);
 
-// permutationElement(first + k, d.n, seed) (lowdiscrepancy.h) for k in
-// [0, kCameraPacketSamples): the images of a camera packet's sample indices
-// (0 for those from n on, which have none).
-// The indices are made in the SIMD register, not loaded: a vector load of
-// values just stored one by one would stall on store forwarding.
-void permutationBlock(uint32_t first, const PermutationDomain& d, uint64_t seed, uint32_t* out);
+// out[i] = permutationElement(i, d.n, seed) (lowdiscrepancy.h) for every i
+// in [0, d.n): a whole permutation, its elements side by side. One element's
+// multiply chain is long; a table made in one loop pays it once.
+void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out);
 
 }  // namespace pathlab

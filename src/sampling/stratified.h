@@ -9,6 +9,8 @@
 // native dimension limit; only pairs are jointly stratified.
 #pragma once
 
+#include <vector>
+
 #include "core/hash.h"
 #include "sampling/lowdiscrepancy.h"
 #include "sampling/pcg_cursor.h"
@@ -31,6 +33,7 @@ class StratifiedSampler {
         // position is a mask and a shift, and dividing by the strata counts is
         // multiplying by their exact reciprocals — the same bits without the
         // integer and float divisions.
+        if (spp_ <= kMaxTabulatedSpp) tables_.resize(size_t(kTabulatedDimensions) * size_t(spp_));
         powerOfTwo_ = (spp_ & (spp_ - 1)) == 0;
         if (powerOfTwo_) {
             xShift_ = __builtin_ctz(unsigned(xStrata_));
@@ -48,19 +51,18 @@ class StratifiedSampler {
         cursor_.seek(pixelHash_, index, dim);
     }
     float get1D() {
-        const uint32_t stratum = permutationElement(index_, strata_, strataHash());
+        const uint32_t stratum = stratumOf(index_, dimension_);
         ++dimension_;
         return jittered1D(stratum, cursor_.nextFloat());
     }
     Vec2f get2D() {
-        const uint32_t stratum = permutationElement(index_, strata_, strataHash());
+        const uint32_t stratum = stratumOf(index_, dimension_);
         dimension_ += 2;
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
         return jittered2D(stratum, dx, dy);
     }
-    // Lane draws (sampler.h): the permutation's seed is the pixel's and the
-    // dimension's, shared by all lanes; the lanes' strata are computed side by
-    // side in SIMD lanes (scramble_lanes.h).
+    // Lane draws (sampler.h): each lane's stratum from the dimension's table,
+    // then its jitter.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
         uint32_t strata[kCameraPacketSamples];
         lanesStrata(p, indices, count, dim, strata);
@@ -89,7 +91,8 @@ class StratifiedSampler {
   private:
     void setPixel(Vec2i p) {
         if (p.x != pixel_.x || p.y != pixel_.y)
-            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear();
+            pixel_ = p, pixelHash_ = hashValues(p.x, p.y, seed_, 0x5354u), strataHashes_.clear(),
+            tableValid_ = 0;
     }
     // The renderer's indices are below spp already; the division is for others.
     uint32_t sampleInPixel(int index) const {
@@ -97,26 +100,26 @@ class StratifiedSampler {
     }
     // The permutation's seed for (pixel, dimension): four chained hash rounds,
     // the same for all of a pixel's samples.
-    uint64_t strataHash() {
-        return strataHashes_.get(dimension_,
-                                 [&] { return hashValues(pixel_.x, pixel_.y, dimension_, seed_); });
+    uint64_t strataHash(int dim) const { return hashValues(pixel_.x, pixel_.y, dim, seed_); }
+    // Sample `index`'s stratum in dimension `dim` of the current pixel. One
+    // permutation element is a chain of four dependent multiplies, which a
+    // draw would wait for; the first kTabulatedDimensions dimensions' whole
+    // permutations are instead made the first time the pixel draws them, in
+    // one SIMD loop (scramble_lanes.h), and read from the table after.
+    uint32_t stratumOf(uint32_t index, int dim) {
+        if (!tables_.empty() && unsigned(dim) < unsigned(kTabulatedDimensions)) {
+            uint32_t* table = tables_.data() + size_t(dim) * size_t(spp_);
+            if (!((tableValid_ >> dim) & 1))
+                permutationTable(strata_, strataHash(dim), table), tableValid_ |= uint64_t(1)
+                                                                                  << dim;
+            return table[index];
+        }
+        return permutationElement(index, strata_,
+                                  strataHashes_.get(dim, [&] { return strataHash(dim); }));
     }
     void lanesStrata(Vec2i p, const int* indices, int count, int dim, uint32_t* strata) {
         setPixel(p);
-        dimension_ = dim;
-        const uint64_t seed = strataHash();
-        const uint32_t first = sampleInPixel(indices[0]);
-        bool inBlock = true;
-        for (int j = 0; j < count; ++j)
-            inBlock &= sampleInPixel(indices[j]) - first < uint32_t(kCameraPacketSamples);
-        if (!inBlock) {
-            for (int j = 0; j < count; ++j)
-                strata[j] = permutationElement(sampleInPixel(indices[j]), strata_, seed);
-            return;
-        }
-        uint32_t block[kCameraPacketSamples];
-        permutationBlock(first, strata_, seed, block);
-        for (int j = 0; j < count; ++j) strata[j] = block[sampleInPixel(indices[j]) - first];
+        for (int j = 0; j < count; ++j) strata[j] = stratumOf(sampleInPixel(indices[j]), dim);
     }
     float jittered1D(uint32_t stratum, float u) const {
         const float v = float(stratum) + u;
@@ -140,8 +143,14 @@ class StratifiedSampler {
     int xShift_ = 0;
     float invSpp_ = 1, invX_ = 1, invY_ = 1;
     Vec2i pixel_{-1, -1};
-    uint64_t pixelHash_ = 0;  // of pixel_, for the jitter cursor
-    PixelDimensionCache<uint64_t> strataHashes_;
+    uint64_t pixelHash_ = 0;                      // of pixel_, for the jitter cursor
+    PixelDimensionCache<uint64_t> strataHashes_;  // the untabulated dimensions' seeds
+    // Up to kMaxTabulatedSpp samples per pixel (a table of 256 KB at most):
+    // kTabulatedDimensions permutations of spp_ strata, tableValid_ bit d
+    // when dimension d's is the current pixel's.
+    static constexpr int kTabulatedDimensions = 64, kMaxTabulatedSpp = 1024;
+    std::vector<uint32_t> tables_;
+    uint64_t tableValid_ = 0;
     uint32_t index_ = 0;
     int dimension_ = 0;
     PcgSampleCursor cursor_;
