@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <iostream>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -291,27 +292,70 @@ void expectZSobolDrawMatchesReference(ZSobolSampler& s, int d, uint64_t seed, bo
                                                              uint32_t(seeds >> 32)))));
 }
 
-// The renderer's order: a pixel's samples one after another, each drawing its
-// dimensions in order, and some paths ending early — the draws that reuse the
-// previous draw's node of the last tree level must give the reference values.
+// permutationElement's values as the implementation before PermutationDomain gave them.
+constexpr uint32_t kPinnedElements[5] = {58, 7, 4, 71, 5};
+
+// The instruction sets the scramble_lanes kernels can run here.
+std::vector<SimdLevel> scrambleLaneLevels() {
+    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
+    if (cpuHasAvx2()) levels.push_back(SimdLevel::Avx2);
+    return levels;
+}
+
 TEST(PermutationDigits, TablesEqualTheElementByElementPermutation) {
-    // permutationTable (stratified's strata) against permutationElement:
-    // sizes that are powers of two (one round) and that are not (cycle
-    // walking). Each is checked to be a permutation of [0, n) on the way.
-    for (uint32_t n : {1u, 2u, 3u, 5u, 8u, 9u, 24u, 64u, 100u, 1024u}) {
-        for (uint64_t seed : {uint64_t(0), uint64_t(0x9e3779b97f4a7c15), uint64_t(12345)}) {
-            std::vector<uint32_t> table(n);
-            permutationTable(PermutationDomain(n), seed, table.data());
-            std::vector<int> hits(n, 0);
-            for (uint32_t i = 0; i < n; ++i) {
-                EXPECT_EQ(table[i], permutationElement(i, n, seed)) << "n " << n << " i " << i;
-                ++hits[permutationElement(i, n, seed)];
+    // permutationTable (stratified's strata), with every instruction set
+    // available, against permutationElement: sizes that are powers of two
+    // (one round) and that are not (cycle walking). Each is checked to be a
+    // permutation of [0, n) on the way.
+    for (SimdLevel level : scrambleLaneLevels()) {
+        for (uint32_t n : {1u, 2u, 3u, 5u, 8u, 9u, 24u, 64u, 100u, 1024u}) {
+            for (uint64_t seed : {uint64_t(0), uint64_t(0x9e3779b97f4a7c15), uint64_t(12345)}) {
+                std::vector<uint32_t> table(n);
+                permutationTable(PermutationDomain(n), seed, table.data(), level);
+                std::vector<int> hits(n, 0);
+                for (uint32_t i = 0; i < n; ++i) {
+                    EXPECT_EQ(table[i], permutationElement(i, n, seed)) << "n " << n << " i " << i;
+                    ++hits[permutationElement(i, n, seed)];
+                }
+                EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), int(n)) << "n " << n;
             }
-            EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), int(n)) << "n " << n;
         }
     }
 }
 
+TEST(PermutationDigits, PermutationElementKeepsItsValues) {
+    // Values of permutationElement from before its range was kept in a
+    // PermutationDomain (kPinnedElements): the stratified sampler's strata
+    // must not change.
+    EXPECT_EQ(permutationElement(0, 64, 0x9e3779b97f4a7c15), kPinnedElements[0]);
+    EXPECT_EQ(permutationElement(17, 64, 0x9e3779b97f4a7c15), kPinnedElements[1]);
+    EXPECT_EQ(permutationElement(5, 24, 12345), kPinnedElements[2]);
+    EXPECT_EQ(permutationElement(99, 100, 0xdeadbeefcafef00d), kPinnedElements[3]);
+    EXPECT_EQ(permutationElement(3, 7, 1), kPinnedElements[4]);
+}
+
+TEST(ZSobolDigits, LaneScramblesEqualTheScalarScramble) {
+    // owenScrambleReversedLanes, with every instruction set available,
+    // against R(L_seed(v)) lane by lane.
+    std::mt19937 rng(5);
+    for (SimdLevel level : scrambleLaneLevels()) {
+        for (int round = 0; round < 200; ++round) {
+            uint32_t v[kCameraPacketSamples];
+            for (uint32_t& x : v) x = uint32_t(rng());
+            const auto seed = uint32_t(rng());
+            float x[kCameraPacketSamples];
+            owenScrambleReversedLanes(v, seed, x, level);
+            for (int j = 0; j < kCameraPacketSamples; ++j)
+                EXPECT_EQ(
+                    bits(x[j]),
+                    bits(fixedPointToFloat(reverseBits32(laineKarrasPermutation(v[j], seed)))));
+        }
+    }
+}
+
+// The renderer's order: a pixel's samples one after another, each drawing its
+// dimensions in order, and some paths ending early — the draws that reuse the
+// previous draw's node of the last tree level must give the reference values.
 TEST(ZSobolDigits, DrawsInTheRenderersOrderMatchTheReference) {
     for (int spp : {1, 2, 3, 4, 6, 8, 32, 64, 128, 512})
         for (uint64_t seed : {0, 11}) {

@@ -3,8 +3,9 @@
 // Modelled on pbrt-v4's Sampler (src/pbrt/samplers.h): a small value type per
 // strategy with the same four calls; the integrator is a template over it, so
 // drawing a sample is an inlined call, never a virtual one. A sampler is
-// copied per tile; anything large it needs (tables, textures) is shared and
-// immutable.
+// copied per tile; anything large it needs that does not depend on the pixel
+// (tables, textures) is shared and immutable, and per-pixel caches are the
+// copy's own (stratified's strata tables, zsobol's digit trees).
 //
 // Determinism: a sampler's output is a pure function of (pixel, sample index,
 // dimension, seed) — never of the order in which pixels are rendered — so an

@@ -19,6 +19,12 @@ namespace avx2 {
 }  // namespace avx2
 PATHLAB_AVX2_END
 
+namespace {
+bool useAvx2(SimdLevel limit) {
+    return limit >= SimdLevel::Avx2 && cpuHasAvx2();
+}
+}  // namespace
+
 void owenSobolLanes1D(const uint32_t* index, uint32_t indexSeed, uint32_t valueSeed, float* x) {
     if (cpuHasAvx2()) return avx2::owenSobol1D(index, indexSeed, valueSeed, x);
     baseline::owenSobol1D(index, indexSeed, valueSeed, x);
@@ -30,18 +36,18 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
     baseline::owenSobol2D(index, indexSeed, xSeed, ySeed, x, y);
 }
 
-void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x) {
-    if (cpuHasAvx2()) return avx2::owenScrambleReversed(reversed, seed, x);
+void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x, SimdLevel limit) {
+    if (useAvx2(limit)) return avx2::owenScrambleReversed(reversed, seed, x);
     baseline::owenScrambleReversed(reversed, seed, x);
 }
 
-void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out) {
+void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out, SimdLevel limit) {
     if (d.n <= 1) {
         if (d.n == 1) out[0] = 0;
         return;
     }
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
-    if (cpuHasAvx2())
+    if (useAvx2(limit))
         avx2::permutationRound(d, s0, s1, out);
     else
         baseline::permutationRound(d, s0, s1, out);

@@ -1,12 +1,16 @@
-// The arithmetic of `sobol-owen`'s, `zsobol`'s and `stratified`'s lane draws (sampler.h,
-// drawLanes1D/2D): kCameraPacketSamples samples side by side, pure 32-bit integer operations in
-// SIMD lanes. Out of line so that it can be compiled for AVX2 and chosen at run time (eight lanes
-// in one register; GCC does not vectorise the 32-bit multiplies for the x86-64 baseline); the bits
-// are the same whichever version runs.
+// The arithmetic of `sobol-owen`'s and `zsobol`'s lane draws (sampler.h,
+// drawLanes1D/2D) and of `stratified`'s permutation tables: many independent
+// values side by side — a camera packet's kCameraPacketSamples samples, or a
+// permutation's elements — in pure 32-bit integer operations. Out of line so
+// that it can be compiled for AVX2 and chosen at run time (eight lanes in one
+// register; GCC does not vectorise the 32-bit multiplies for the x86-64
+// baseline); the bits are the same whichever version runs. `limit` caps the
+// instruction set (tests run each one).
 #pragma once
 
 #include <cstdint>
 
+#include "core/simd_target.h"
 #include "sampling/lowdiscrepancy.h"
 
 namespace pathlab {
@@ -24,11 +28,13 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
 // Owen scrambles of values given bit-reversed (zsobol's permuted indices and
 // Sobol' dimension 1): x = owenScramble(R(reversed), seed) =
 // R(L_seed(reversed)), as floats.
-void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x);
+void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x,
+                               SimdLevel limit = SimdLevel::Avx512);
 
 // out[i] = permutationElement(i, d.n, seed) (lowdiscrepancy.h) for every i
 // in [0, d.n): a whole permutation, its elements side by side. One element's
 // multiply chain is long; a table made in one loop pays it once.
-void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out);
+void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out,
+                      SimdLevel limit = SimdLevel::Avx512);
 
 }  // namespace pathlab

@@ -33,7 +33,6 @@ class StratifiedSampler {
         // position is a mask and a shift, and dividing by the strata counts is
         // multiplying by their exact reciprocals — the same bits without the
         // integer and float divisions.
-        if (spp_ <= kMaxTabulatedSpp) tables_.resize(size_t(kTabulatedDimensions) * size_t(spp_));
         powerOfTwo_ = (spp_ & (spp_ - 1)) == 0;
         if (powerOfTwo_) {
             xShift_ = __builtin_ctz(unsigned(xStrata_));
@@ -41,6 +40,7 @@ class StratifiedSampler {
             invX_ = 1.0f / float(xStrata_);
             invY_ = 1.0f / float(yStrata_);
         }
+        if (spp_ <= kMaxTabulatedSpp) tables_.resize(size_t(kTabulatedDimensions) * size_t(spp_));
     }
 
     int samplesPerPixel() const { return spp_; }
@@ -61,8 +61,9 @@ class StratifiedSampler {
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
         return jittered2D(stratum, dx, dy);
     }
-    // Lane draws (sampler.h): each lane's stratum from the dimension's table,
-    // then its jitter.
+    // Lane draws (sampler.h): each lane's stratum (from the dimension's table
+    // where there is one), then its jitter. They leave the sampler where the
+    // last lane's per-sample draw would, as the other samplers' do.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
         uint32_t strata[kCameraPacketSamples];
         lanesStrata(p, indices, count, dim, strata);
@@ -70,6 +71,7 @@ class StratifiedSampler {
             cursor_.seek(pixelHash_, indices[j], dim);
             out[j] = jittered1D(strata[j], cursor_.nextFloat());
         }
+        finishLanes(indices, count, dim + 1);
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
         uint32_t strata[kCameraPacketSamples];
@@ -79,6 +81,7 @@ class StratifiedSampler {
             const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
             out[j] = jittered2D(strata[j], dx, dy);
         }
+        finishLanes(indices, count, dim + 2);
     }
     Vec2f getPixel2D() { return get2D(); }
     void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
@@ -96,7 +99,12 @@ class StratifiedSampler {
     }
     // The renderer's indices are below spp already; the division is for others.
     uint32_t sampleInPixel(int index) const {
-        return static_cast<uint32_t>(unsigned(index) < unsigned(spp_) ? index : index % spp_);
+        if (unsigned(index) < unsigned(spp_)) return uint32_t(index);
+        const int r = index % spp_;
+        return uint32_t(r < 0 ? r + spp_ : r);
+    }
+    void finishLanes(const int* indices, int count, int nextDimension) {
+        if (count > 0) index_ = sampleInPixel(indices[count - 1]), dimension_ = nextDimension;
     }
     // The permutation's seed for (pixel, dimension): four chained hash rounds,
     // the same for all of a pixel's samples.
