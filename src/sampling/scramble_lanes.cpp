@@ -42,10 +42,7 @@ void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x
 }
 
 void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out, SimdLevel limit) {
-    if (d.n <= 1) {
-        if (d.n == 1) out[0] = 0;
-        return;
-    }
+    // n ≤ 1 needs no case of its own: the range is {0} (mask 0), or empty.
     const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
     if (useAvx2(limit))
         avx2::permutationRound(d, s0, s1, out);

@@ -117,9 +117,10 @@ class StratifiedSampler {
     uint32_t stratumOf(uint32_t index, int dim) {
         if (!tables_.empty() && unsigned(dim) < unsigned(kTabulatedDimensions)) {
             uint32_t* table = tables_.data() + size_t(dim) * size_t(spp_);
-            if (!((tableValid_ >> dim) & 1))
-                permutationTable(strata_, strataHash(dim), table), tableValid_ |= uint64_t(1)
-                                                                                  << dim;
+            if (!((tableValid_ >> dim) & 1)) {
+                permutationTable(strata_, strataHash(dim), table);
+                tableValid_ |= uint64_t(1) << dim;
+            }
             return table[index];
         }
         return permutationElement(index, strata_,
