@@ -43,24 +43,29 @@ Image readExr(const std::string& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-        if (w <= 0 || h <= 0) throw InputError("image '" + path + "' is empty");
-        checkImageSize(path, w, h);
+        // In 64 bits: a window from −2³¹ to 2³¹−1 is 2³² wide.
+        const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1,
+                      h64 = int64_t(dw.max.y) - dw.min.y + 1;
+        if (w64 <= 0 || h64 <= 0) throw InputError("image '" + path + "' is empty");
+        checkImageSize(path, w64, h64);
+        const int w = int(w64), h = int(h64);
         Image img(w, h);
         const Imf::ChannelList& channels = file.header().channels();
         const bool hasRgb =
             channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
         const bool hasY = channels.findChannel("Y") != nullptr;
         if (!hasRgb && !hasY) throw InputError("image '" + path + "' has no R,G,B or Y channels");
+        // The library addresses pixel (x, y) as base + x·xs + y·ys with data
+        // window coordinates, which may be anywhere (negative too). Slice::Make
+        // offsets the base by the window's origin in integer arithmetic: a
+        // pointer moved outside its buffer here would be undefined behaviour.
         Imf::FrameBuffer fb;
-        char* base = reinterpret_cast<char*>(img.rgb.data()) -
-                     (size_t(dw.min.x) + size_t(dw.min.y) * w) * 3 * sizeof(float);
         const size_t xs = 3 * sizeof(float), ys = xs * w;
         const char* names[3] = {"R", "G", "B"};
         for (int c = 0; c < 3; ++c) {
             const char* name = hasRgb ? names[c] : "Y";
             if (!hasRgb && c > 0) break;
-            fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+            fb.insert(name, Imf::Slice::Make(Imf::FLOAT, img.rgb.data() + c, dw, xs, ys));
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
