@@ -49,4 +49,10 @@ inline SimdLevel bestSimdLevel() {
     return level;
 }
 
+// The best level the processor has, capped by `limit` (tests cap it to run
+// each version of a kernel).
+inline SimdLevel simdLevelUpTo(SimdLevel limit) {
+    return limit < bestSimdLevel() ? limit : bestSimdLevel();
+}
+
 }  // namespace pathlab

@@ -16,8 +16,6 @@
 // AVX-512DQ and VL run the AVX2 code with their 64-bit lane multiply.
 #include <immintrin.h>
 
-#include <algorithm>
-
 #include "core/simd_target.h"
 #include "sampling/halton.h"
 
@@ -48,7 +46,7 @@ int registersFor(int count) {
     return (count + kRegisterLanes - 1) / kRegisterLanes;
 }
 SimdLevel levelFor(int count, SimdLevel limit) {
-    return count > 2 ? std::min(limit, bestSimdLevel()) : SimdLevel::Baseline;
+    return count > 2 ? simdLevelUpTo(limit) : SimdLevel::Baseline;
 }
 }  // namespace
 

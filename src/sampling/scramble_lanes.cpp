@@ -21,7 +21,7 @@ PATHLAB_AVX2_END
 
 namespace {
 bool useAvx2(SimdLevel limit) {
-    return limit >= SimdLevel::Avx2 && cpuHasAvx2();
+    return simdLevelUpTo(limit) >= SimdLevel::Avx2;
 }
 }  // namespace
 
