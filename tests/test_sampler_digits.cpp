@@ -363,8 +363,10 @@ TEST(ZSobolDigits, DrawsInTheRenderersOrderMatchTheReference) {
             Pcg32 rng(uint64_t(spp) * 7 + seed, 3);
             for (Vec2i pixel : {Vec2i{0, 0}, Vec2i{5, 9}, Vec2i{0, 0}, Vec2i{63, 63}})
                 for (int index = 0; index < spp; ++index) {
-                    // A path of up to 12 dimensions (from 0), ending early at random.
-                    const int dims = 2 + int(rng.nextUInt(11));
+                    // A path of up to 40 dimensions (from 0), ending early at
+                    // random: past the tabulated dimensions of zsobol's low
+                    // digits (the first three vertices') into its trees.
+                    const int dims = 2 + int(rng.nextUInt(39));
                     for (int d = 0; d < dims;) {
                         const bool twoD = d + 1 < dims && rng.nextUInt(2);
                         s.startPixelSample(pixel, index, d);

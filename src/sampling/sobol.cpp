@@ -75,6 +75,10 @@ ZSobolSampler::ZSobolSampler(const SamplerConfig& c)
         return t;
     }();
     reversedSobol1Bytes_ = bytes.data();
+    if (log2Spp_ >= 1 && log2Spp_ <= kMaxTableLog2Spp) {
+        tableLog2Spp_ = log2Spp_;
+        lowTable_.assign(size_t(kTabulatedDimensions) << log2Spp_, 0);
+    }
     if (log2Spp_ >= 1 && log2Spp_ <= kMaxTreeLog2Spp) {
         const int levels = log2Spp_ / 2;  // full base-4 digits below the pixel's
         for (int j = 0; j < levels; ++j) lowNodes_ += 1 << (2 * j);
@@ -103,6 +107,37 @@ uint64_t ZSobolSampler::referenceSampleIndex(int dimension) const {
     }
     if (oddBits) index |= (mortonIndex_ & 1) ^ (mixBits((mortonIndex_ >> 1) ^ dimensionSalt) & 1);
     return index;
+}
+
+void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
+    // The tree of walkLowDigits level by level from the root, expanded in
+    // place: entry n of a level holds the permuted digits above it of node n
+    // (n = the samples' digits above the level), and its children 4n … 4n + 3
+    // (2n, 2n + 1 on an odd last level) get them with their own digit
+    // appended. Backwards, so that no entry is overwritten before it is read.
+    // The hashes are independent of one another and overlap in the pipeline.
+    uint16_t* row = lowTable_.data() + (size_t(d) << log2Spp_);
+    const int odd = log2Spp_ & 1;
+    row[0] = 0;
+    uint64_t count = 1;
+    for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2, count *= 4) {
+        const uint64_t pixelDigits = pixelMorton_ >> (shift + 2);
+        for (uint64_t n = count; n-- > 0;) {
+            const unsigned perm = zsobol::digitPermutation(pixelDigits | n, salt);
+            const auto prefix = uint16_t(row[n] << 2);
+            for (unsigned digit = 0; digit < 4; ++digit)
+                row[4 * n + digit] = uint16_t(prefix | ((perm >> (2 * digit)) & 3));
+        }
+    }
+    if (odd) {
+        const uint64_t pixelDigits = pixelMorton_ >> 1;
+        for (uint64_t n = count; n-- > 0;) {
+            const auto flip = uint16_t(mixBits((pixelDigits | n) ^ salt) & 1);
+            const auto prefix = uint16_t(row[n] << 1);
+            row[2 * n] = uint16_t(prefix | flip);
+            row[2 * n + 1] = uint16_t(prefix | (flip ^ 1));
+        }
+    }
 }
 
 void ZSobolSampler::fillHighDigits(CachedDimension& c) const {
