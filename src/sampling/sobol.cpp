@@ -78,6 +78,7 @@ ZSobolSampler::ZSobolSampler(const SamplerConfig& c)
     if (log2Spp_ >= 1 && log2Spp_ <= kMaxTableLog2Spp) {
         tableLog2Spp_ = log2Spp_;
         lowTable_.assign(size_t(kTabulatedDimensions) << log2Spp_, 0);
+        lowSobol1_.assign(lowTable_.size(), 0);
     }
     if (log2Spp_ >= 1 && log2Spp_ <= kMaxTreeLog2Spp) {
         const int levels = log2Spp_ / 2;  // full base-4 digits below the pixel's
@@ -138,6 +139,11 @@ void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
             row[2 * n + 1] = uint16_t(prefix | (flip ^ 1));
         }
     }
+    // Below 2^8, so the first byte's table alone (reversedSobol1).
+    static_assert(kMaxTableLog2Spp <= 8);
+    uint32_t* sobol1 = lowSobol1_.data() + (size_t(d) << log2Spp_);
+    for (size_t sample = 0; sample < (size_t(1) << log2Spp_); ++sample)
+        sobol1[sample] = reversedSobol1Bytes_[row[sample]];
 }
 
 void ZSobolSampler::fillHighDigits(CachedDimension& c) const {

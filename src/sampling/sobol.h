@@ -321,7 +321,7 @@ class ZSobolSampler {
                     owenScramble(sobolBits(matrices_, index, 1), uint32_t(seeds >> 32)))};
         }
         CachedDimension& c = cached(d);
-        return scrambled2D(c, lowDigits(d, c));
+        return scrambled2D(d, c, lowDigits(d, c));
     }
     Vec2f getPixel2D() { return get2D(); }
     void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
@@ -355,7 +355,7 @@ class ZSobolSampler {
         for (int j = 0; j < count; ++j) {
             const uint64_t low = laneLowDigits(c, dim, indices[j]);
             index[j] = uint32_t(c.highIndex | low);
-            reversed1[j] = reversedSobol1(c, low);
+            reversed1[j] = lowReversedSobol1(dim, c, low);
         }
         float x[kCameraPacketSamples], y[kCameraPacketSamples];
         owenScrambleReversedLanes(index, c.seeds2D[0], x);
@@ -428,6 +428,13 @@ class ZSobolSampler {
     // is the cached high part XOR the low part. The low part a byte at a
     // time from tables: a loop over its set bits would end at an
     // unpredictable count.
+    // Where the low digits are tabulated, so is their part of it, by sample:
+    // one load, not one that waits for the load of the low digits.
+    uint32_t lowReversedSobol1(int d, const CachedDimension& c, uint64_t low) const {
+        if (!tabulated(d)) return reversedSobol1(c, low);
+        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
+        return c.reversedSobol1High ^ lowSobol1_[size_t(d) << tableLog2Spp_ | sample];
+    }
     uint32_t reversedSobol1(const CachedDimension& c, uint64_t low) const {
         uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
                              reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
@@ -437,10 +444,10 @@ class ZSobolSampler {
     }
     // Dimensions d, d + 1 from the permuted index's low digits (both kept
     // bit-reversed, as owenScramble wants them).
-    Vec2f scrambled2D(const CachedDimension& c, uint64_t low) const {
+    Vec2f scrambled2D(int d, const CachedDimension& c, uint64_t low) const {
         const uint64_t xy =
             reverseBits32Pair(laineKarrasPermutation(uint32_t(c.highIndex | low), c.seeds2D[0]),
-                              laineKarrasPermutation(reversedSobol1(c, low), c.seeds2D[1]));
+                              laineKarrasPermutation(lowReversedSobol1(d, c, low), c.seeds2D[1]));
         return {fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))};
     }
     // The permuted digits below the pixel's: the ⌈log2 spp / 2⌉ digits that
@@ -530,8 +537,9 @@ class ZSobolSampler {
     // Only the dimensions of the first three path vertices, which nearly every
     // sample draws; deeper ones, drawn by fewer samples, walk the tree.
     static constexpr int kTabulatedDimensions = dims::bounceBase(3);
-    int tableLog2Spp_ = 0;            // log2Spp_ where tabulated, else 0
-    std::vector<uint16_t> lowTable_;  // kTabulatedDimensions × 2^tableLog2Spp_
+    int tableLog2Spp_ = 0;             // log2Spp_ where tabulated, else 0
+    std::vector<uint16_t> lowTable_;   // kTabulatedDimensions × 2^tableLog2Spp_
+    std::vector<uint32_t> lowSobol1_;  // their bit-reversed Sobol' dimension 1, alike
     bool tabulated(int d) const { return tableLog2Spp_ > 0 && d < kTabulatedDimensions; }
     int lowNodes_ = 0;                      // nodes per dimension (0: no tree kept)
     std::vector<uint8_t> lowPermutations_;  // kCachedDimensions × lowNodes_
