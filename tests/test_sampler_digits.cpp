@@ -396,6 +396,8 @@ TEST(ZSobolDigits, CachedIndexAndDrawsMatchTheDigitByDigitReference) {
                                  int(rng.nextUInt(uint32_t(res.y)))};
                     else if (r == 1)
                         pixel = {res.x - 1, res.y - 1};
+                    else if (r == 2 && step % 5 == 0)  // outside the image (`points --pixel`)
+                        pixel = {res.x + int(rng.nextUInt(40)), 3 * res.y + 1};
                     const int index = int(rng.nextUInt(uint32_t(spp)));
                     const int d = int(rng.nextUInt(72));  // past the 64 cached dimensions
                     s.startPixelSample(pixel, index, d);

@@ -30,7 +30,7 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
         offset[d] = static_cast<uint32_t>(total);
         total += primes[d];
     }
-    table.resize(total);
+    table.resize(total + 1);  // + 1: the lane draws' 32-bit reads (HaltonDimension)
     shifts.resize(size_t(kPrimeTableSize) * kMaxDigits);
     for (int d = 0; d < kPrimeTableSize; ++d) {
         const int base = primes[d];
@@ -51,22 +51,17 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
     size_t pairTotal = 0;  // sized first: dimensions point into the vector
     for (int d = 0; d < kTabulatedBases && primes[d] <= kMaxPairBase; ++d)
         pairTotal += size_t(primes[d]) * size_t(primes[d]) * size_t(floatDigitCount(primes[d]) / 2);
-    pairTables.resize(pairTotal);
+    pairTables.resize(pairTotal + 1);
     uint16_t* nextPairs = pairTables.data();
     tails.resize(size_t(kTabulatedBases) * kMaxDigits);
     powers.resize(size_t(kTabulatedBases) * kMaxDigits);
     dimensions.reserve(kTabulatedBases);
-    rotations.resize(table.size() + kTabulatedBases);
-    // The lane draws' 32-bit tables: sized here, since dimensions point into
-    // them; the copies of the 16-bit ones are filled after the loop.
-    permutations32.assign(table.begin(), table.end());
-    rotations32.resize(rotations.size());
-    pairTables32.resize(pairTables.size());
+    rotations.resize(total + kTabulatedBases + 1);
     size_t scrambledTotal = 0;
     for (int d = 0; d < kTabulatedBases; ++d)
         scrambledTotal += size_t(primes[d]) * size_t(floatDigitCount(primes[d]));
-    scrambledDigits32.resize(scrambledTotal);
-    int32_t* nextScrambled = scrambledDigits32.data();
+    scrambledDigits.resize(scrambledTotal + 1);
+    uint16_t* nextScrambled = scrambledDigits.data();
     for (int d = 0; d < kTabulatedBases; ++d) {
         const int base = primes[d];
         const int digits = floatDigitCount(base);
@@ -93,20 +88,15 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
                     *nextPairs++ = uint16_t(perm[rotateDigit(q % b, shift[k], b)] * b +
                                             perm[rotateDigit(q / b, shift[k + 1], b)]);
         }
-        int32_t* scrambled = nextScrambled;
+        uint16_t* scrambled = nextScrambled;
         for (int k = 0; k < digits; ++k)
             for (int digit = 0; digit < base; ++digit)
                 *nextScrambled++ = perm[rotateDigit(uint32_t(digit), shift[k], uint32_t(base))];
-        dimensions.push_back(
-            HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits, scale, perm, shift,
-                            tail, power, pairs, BaseDivider{uint32_t(base * base)}, owenHash,
-                            rotation, permutations32.data() + offset[d], scrambled,
-                            pairs ? pairTables32.data() + (pairs - pairTables.data()) : nullptr,
-                            rotations32.data() + (rotation - rotations.data()), 1.0 / base,
-                            1.0 / (double(base) * base)});
+        dimensions.push_back(HaltonDimension{BaseDivider{uint32_t(base)}, uint32_t(base), digits,
+                                             scale, perm, shift, tail, power, pairs,
+                                             BaseDivider{uint32_t(base * base)}, owenHash, rotation,
+                                             scrambled, 1.0 / base, 1.0 / (double(base) * base)});
     }
-    std::copy(rotations.begin(), rotations.end(), rotations32.begin());
-    std::copy(pairTables.begin(), pairTables.end(), pairTables32.begin());
 }
 
 std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed) {

@@ -87,13 +87,13 @@ struct HaltonDimension {
     uint64_t owenHash;        // Owen: hashValues(seed, d, 0x4f57454e)
     // Owen: the rotations of the root ([0]) and of its children ([1 + d_0]).
     const uint16_t* rotations;
-    // For the lane draws' lookups, as 32-bit entries: the permutation,
-    // (RandomDigit) digit k's scrambled value π_b((d + s_k) mod b) at [k·b + d],
-    // `pairs` (null where it is) and (Owen) `rotations`.
-    const int32_t* permutation32;
-    const int32_t* scrambledDigits32;
-    const int32_t* pairs32;
-    const int32_t* rotations32;
+    // RandomDigit: digit k's scrambled value π_b((d + s_k) mod b) at [k·b + d],
+    // for the lane draws (the scalar loop scrambles the digit itself). The
+    // lane draws gather from these 16-bit tables and from `permutation`,
+    // `pairs` and `rotations` 32 bits at a time, keeping the low half: each
+    // table's vector holds one entry more than it uses, so that the last
+    // entry's read stays inside it.
+    const uint16_t* scrambledDigits;
     double inverseBase, inversePairBase;  // RN(1 / b), RN(1 / b²)
 };
 
@@ -114,19 +114,16 @@ struct HaltonDigitPermutations {
     static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
     static constexpr int kTabulatedBases = 128;
     // Pair tables stop here: b² entries per pair of digit positions (61: 3721
-    // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together
-    // (and their 32-bit copies for the lane draws: about 1.3 MB per seed with
-    // the digit, permutation and rotation tables).
+    // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together.
     static constexpr int kMaxPairBase = 61;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
-    std::vector<uint16_t> shifts;         // kMaxDigits per base: the per-position digit shifts
-    std::vector<uint64_t> tails, powers;  // kMaxDigits per tabulated base
-    std::vector<uint16_t> rotations;      // 1 + b per tabulated base
-    std::vector<uint16_t> pairTables;     // HaltonDimension::pairs of every base ≤ kMaxPairBase
-    // HaltonDimension's 32-bit tables for the lane draws.
-    std::vector<int32_t> permutations32, scrambledDigits32, pairTables32, rotations32;
+    std::vector<uint16_t> shifts;           // kMaxDigits per base: the per-position digit shifts
+    std::vector<uint64_t> tails, powers;    // kMaxDigits per tabulated base
+    std::vector<uint16_t> rotations;        // 1 + b per tabulated base
+    std::vector<uint16_t> pairTables;       // HaltonDimension::pairs of every base ≤ kMaxPairBase
+    std::vector<uint16_t> scrambledDigits;  // HaltonDimension::scrambledDigits of every base
     std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
