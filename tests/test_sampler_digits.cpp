@@ -205,6 +205,34 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
     }
 }
 
+TEST(HaltonDigits, PlainLaneKernelMatchesTheScalarRadicalInverse) {
+    // `halton`'s lane kernel on every tabulated dimension's base, every
+    // instruction set and every live-lane count: lanes of one call have
+    // different digit counts (0 has none), so each lane stops on its own.
+    std::vector<uint64_t> indices;
+    for (uint64_t a : haltonIndices())
+        if (a >> 32 == 0) indices.push_back(a);
+    while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
+    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
+    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
+        if (level <= bestSimdLevel()) levels.push_back(level);
+    for (int d = 0; d < HaltonDigitPermutations::kTabulatedBases; ++d) {
+        const PrimeBase& b = primeBases()[d];
+        for (size_t i = 0; i < indices.size(); i += kCameraPacketSamples) {
+            const uint64_t* a = indices.data() + i;
+            const int count = 1 + int(i / kCameraPacketSamples) % kCameraPacketSamples;
+            for (SimdLevel level : levels) {
+                float x[kCameraPacketSamples];
+                radicalInverseLanes(b, a, count, x, level);
+                for (int j = 0; j < count; ++j)
+                    ASSERT_EQ(bits(x[j]), bits(radicalInverse(primeTable()[d], a[j])))
+                        << "base " << primeTable()[d] << " index " << a[j] << " level "
+                        << int(level);
+            }
+        }
+    }
+}
+
 TEST(HaltonDigits, SamplersDrawTheDigitLoopsValues) {
     // Across the end of the tables (128 dimensions) and for pixels of a real image.
     const int* primes = primeTable();

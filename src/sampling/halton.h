@@ -108,6 +108,9 @@ void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int 
                                SimdLevel limit = SimdLevel::Avx512);
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                         SimdLevel limit = SimdLevel::Avx512);
+// The same for the plain sampler: out[j] = radicalInverse(b, a[j]).
+void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float* out,
+                         SimdLevel limit = SimdLevel::Avx512);
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
@@ -178,11 +181,10 @@ class HaltonSamplerT {
                 radicalInverse(bases_[1], haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
     }
 
-    // Lane draws (sampler.h) of the scrambled variants: a tabulated
-    // dimension's digits for all the lanes at once. Untabulated dimensions and
-    // indices from 2^32 on take the digit loops lane by lane.
-    void get1DLanes(Vec2i p, const int* indices, int count, int dim,
-                    float* out) requires(kScrambling != HaltonScrambling::None) {
+    // Lane draws (sampler.h): a tabulated dimension's digits for all the
+    // lanes at once. Untabulated dimensions and indices from 2^32 on take the
+    // digit loops lane by lane.
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
         uint64_t a[kCameraPacketSamples];
         if (!laneIndices(p, indices, count, dim, 1, a))
             return drawEachLane1D(*this, p, indices, count, dim, out);
@@ -190,8 +192,7 @@ class HaltonSamplerT {
         scrambleLanes(dimension_ - 1, a, count, x);
         for (int j = 0; j < count; ++j) out[j] = x[j];
     }
-    void get2DLanes(Vec2i p, const int* indices, int count, int dim,
-                    Vec2f* out) requires(kScrambling != HaltonScrambling::None) {
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
         uint64_t a[kCameraPacketSamples];
         if (!laneIndices(p, indices, count, dim, 2, a))
             return drawEachLane2D(*this, p, indices, count, dim, out);
@@ -220,7 +221,9 @@ class HaltonSamplerT {
         return first + used <= HaltonDigitPermutations::kTabulatedBases && largest >> 32 == 0;
     }
     void scrambleLanes(int d, const uint64_t* a, int count, float* out) const {
-        if constexpr (kScrambling == HaltonScrambling::RandomDigit)
+        if constexpr (kScrambling == HaltonScrambling::None)
+            radicalInverseLanes(bases_[d], a, count, out);
+        else if constexpr (kScrambling == HaltonScrambling::RandomDigit)
             randomDigitScrambledLanes(dimensions_[d], a, count, out);
         else
             owenScrambledLanes(dimensions_[d], a, count, out);

@@ -1,4 +1,4 @@
-// The scrambled Halton samplers' lane draws: one tabulated dimension's digits
+// The Halton samplers' lane draws: one tabulated dimension's digits
 // for kCameraPacketSamples Halton indices, four lanes to an AVX2 register.
 // All lanes of a call share the base and the digit count, so one loop serves
 // them; the arithmetic is exact, so each lane's float is, bit for bit, what
@@ -59,6 +59,18 @@ void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int 
             return avx2::randomDigitLanes(t, a, registersFor(count), out);
         case SimdLevel::Baseline:
             for (int j = 0; j < count; ++j) out[j] = randomDigitScrambled(t, a[j]);
+    }
+}
+
+void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float* out,
+                         SimdLevel limit) {
+    switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512:
+            return avx512::radicalInverseLanes(b, a, registersFor(count), out);
+        case SimdLevel::Avx2:
+            return avx2::radicalInverseLanes(b, a, registersFor(count), out);
+        case SimdLevel::Baseline:
+            for (int j = 0; j < count; ++j) out[j] = radicalInverse(b, a[j]);
     }
 }
 
