@@ -1,4 +1,4 @@
-// The scrambled Halton lane kernels (sampling/halton_lanes.cpp) per
+// The Halton lane kernels (sampling/halton_lanes.cpp) per
 // instruction set: nanoseconds per value over the dimensions a path of depth 8
 // draws (2 … 57), for the first packet's indices (samples 0–7) of each pixel
 // of a 512×512 image's first row, with 8 and with 3 live lanes (a batch's
@@ -12,7 +12,7 @@ namespace {
 
 constexpr int kFirstDimension = 2, kLastDimension = 57;
 
-template <bool kOwen>
+template <HaltonScrambling kScrambling>
 void haltonLanes(benchmark::State& state, SimdLevel level, int count) {
     if (level > bestSimdLevel()) {
         state.SkipWithError("this processor lacks the instruction set");
@@ -27,10 +27,12 @@ void haltonLanes(benchmark::State& state, SimdLevel level, int count) {
         for (int j = 0; j < kCameraPacketSamples; ++j) a[j] = mapping.index(pixel, j);
         float out[kCameraPacketSamples];
         for (int d = kFirstDimension; d <= kLastDimension; ++d) {
-            if constexpr (kOwen)
+            if constexpr (kScrambling == HaltonScrambling::Owen)
                 owenScrambledLanes(tables->dimensions[size_t(d)], a, count, out, level);
-            else
+            else if constexpr (kScrambling == HaltonScrambling::RandomDigit)
                 randomDigitScrambledLanes(tables->dimensions[size_t(d)], a, count, out, level);
+            else
+                radicalInverseLanes(primeBases()[d], a, count, out, level);
             benchmark::DoNotOptimize(out);
         }
         values += int64_t(count) * (kLastDimension - kFirstDimension + 1);
@@ -47,10 +49,12 @@ const bool registered = [] {
     for (const auto& [name, level] : levels)
         for (int count : {8, 3}) {
             const std::string suffix = std::string(name) + "/lanes:" + std::to_string(count);
-            benchmark::RegisterBenchmark(("HaltonLanes/rd/" + suffix).c_str(), haltonLanes<false>,
-                                         level, count);
-            benchmark::RegisterBenchmark(("HaltonLanes/owen/" + suffix).c_str(), haltonLanes<true>,
-                                         level, count);
+            benchmark::RegisterBenchmark(("HaltonLanes/plain/" + suffix).c_str(),
+                                         haltonLanes<HaltonScrambling::None>, level, count);
+            benchmark::RegisterBenchmark(("HaltonLanes/rd/" + suffix).c_str(),
+                                         haltonLanes<HaltonScrambling::RandomDigit>, level, count);
+            benchmark::RegisterBenchmark(("HaltonLanes/owen/" + suffix).c_str(),
+                                         haltonLanes<HaltonScrambling::Owen>, level, count);
         }
     return true;
 }();
