@@ -167,19 +167,31 @@ TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
     }
 }
 
+// haltonIndices below 2^32 (the lane kernels' range), padded to whole packets.
+std::vector<uint64_t> haltonLaneIndices() {
+    std::vector<uint64_t> indices;
+    for (uint64_t a : haltonIndices())
+        if (a >> 32 == 0) indices.push_back(a);
+    while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
+    return indices;
+}
+
+// Every instruction set this processor has for the Halton lane kernels (the
+// baseline always).
+std::vector<SimdLevel> haltonLaneLevels() {
+    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
+    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
+        if (level <= bestSimdLevel()) levels.push_back(level);
+    return levels;
+}
+
 TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
     // The lane draws' kernels (AVX2 on processors that have it) on every
     // tabulated dimension, eight indices below 2^32 per call — among them
     // 0, 2^32 − 1 and indices with more digits than a float keeps — against
     // the scalar scramblers lane by lane.
-    std::vector<uint64_t> indices;
-    for (uint64_t a : haltonIndices())
-        if (a >> 32 == 0) indices.push_back(a);
-    while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
-    // Every instruction set this processor has (the baseline always).
-    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
-    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
-        if (level <= bestSimdLevel()) levels.push_back(level);
+    const std::vector<uint64_t> indices = haltonLaneIndices();
+    const std::vector<SimdLevel> levels = haltonLaneLevels();
     if (levels.size() < 3)
         std::cout << "(this processor runs " << levels.size() - 1 << " of the 2 SIMD kernels)\n";
     for (uint64_t seed : {0, 5}) {
@@ -209,13 +221,8 @@ TEST(HaltonDigits, PlainLaneKernelMatchesTheScalarRadicalInverse) {
     // `halton`'s lane kernel on every tabulated dimension's base, every
     // instruction set and every live-lane count: lanes of one call have
     // different digit counts (0 has none), so each lane stops on its own.
-    std::vector<uint64_t> indices;
-    for (uint64_t a : haltonIndices())
-        if (a >> 32 == 0) indices.push_back(a);
-    while (indices.size() % kCameraPacketSamples != 0) indices.push_back(0xffffffffULL);
-    std::vector<SimdLevel> levels = {SimdLevel::Baseline};
-    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
-        if (level <= bestSimdLevel()) levels.push_back(level);
+    const std::vector<uint64_t> indices = haltonLaneIndices();
+    const std::vector<SimdLevel> levels = haltonLaneLevels();
     for (int d = 0; d < HaltonDigitPermutations::kTabulatedBases; ++d) {
         const PrimeBase& b = primeBases()[d];
         for (size_t i = 0; i < indices.size(); i += kCameraPacketSamples) {
