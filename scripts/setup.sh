@@ -12,11 +12,15 @@ PACKAGES=(
   libarchive-tools
   # The report: figures with matplotlib; its test drives Chromium from Node.
   python3-matplotlib python3-numpy chromium nodejs
+  # Test data: the Cornell boxes Embree's tutorials and tinyobjloader ship,
+  # which the scene tests read (they skip where these are missing).
+  embree-tools python3-tinyobjloader
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
-# Optional extras for `make bench` (Embree's tutorial path tracer).
-if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *bench* ]]; then PACKAGES+=(embree-tools hyperfine); fi
+# Optional extras for `make bench` (Embree's tutorial path tracer comes with
+# embree-tools, above).
+if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *bench* ]]; then PACKAGES+=(hyperfine); fi
 # `make fuzz`: clang with libFuzzer and its sanitizer runtimes.
 if [[ "${PATHLAB_SETUP_EXTRAS:-}" == *fuzz* ]]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev libfuzzer-14-dev)
