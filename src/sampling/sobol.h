@@ -428,19 +428,19 @@ class ZSobolSampler {
     // is the cached high part XOR the low part. The low part a byte at a
     // time from tables: a loop over its set bits would end at an
     // unpredictable count.
-    // Where the low digits are tabulated, so is their part of it, by sample:
-    // one load, not one that waits for the load of the low digits.
-    uint32_t lowReversedSobol1(int d, const CachedDimension& c, uint64_t low) const {
-        if (!tabulated(d)) return reversedSobol1(c, low);
-        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
-        return c.reversedSobol1High ^ lowSobol1_[size_t(d) << tableLog2Spp_ | sample];
-    }
     uint32_t reversedSobol1(const CachedDimension& c, uint64_t low) const {
         uint32_t reversed1 = c.reversedSobol1High ^ reversedSobol1Bytes_[low & 0xff] ^
                              reversedSobol1Bytes_[256 + ((low >> 8) & 0xff)] ^
                              reversedSobol1Bytes_[512 + ((low >> 16) & 0xff)];
         if (low >> 24) reversed1 ^= reverseBits32(sobolBits(matrices_, low >> 24 << 24, 1));
         return reversed1;
+    }
+    // The same; where the low digits are tabulated, their part of it is too,
+    // by sample: one load, not one that waits for the load of the low digits.
+    uint32_t lowReversedSobol1(int d, const CachedDimension& c, uint64_t low) const {
+        if (!tabulated(d)) return reversedSobol1(c, low);
+        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
+        return c.reversedSobol1High ^ lowSobol1_[size_t(d) << tableLog2Spp_ | sample];
     }
     // Dimensions d, d + 1 from the permuted index's low digits (both kept
     // bit-reversed, as owenScramble wants them).
