@@ -76,7 +76,6 @@ ZSobolSampler::ZSobolSampler(const SamplerConfig& c)
     }();
     reversedSobol1Bytes_ = bytes.data();
     if (log2Spp_ >= 1 && log2Spp_ <= kMaxTableLog2Spp) {
-        tableLog2Spp_ = log2Spp_;
         lowTable_.assign(size_t(kTabulatedDimensions) << log2Spp_, 0);
         lowSobol1_.assign(lowTable_.size(), 0);
     }

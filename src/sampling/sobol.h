@@ -439,8 +439,7 @@ class ZSobolSampler {
     // by sample: one load, not one that waits for the load of the low digits.
     uint32_t lowReversedSobol1(int d, const CachedDimension& c, uint64_t low) const {
         if (!tabulated(d)) return reversedSobol1(c, low);
-        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
-        return c.reversedSobol1High ^ lowSobol1_[size_t(d) << tableLog2Spp_ | sample];
+        return c.reversedSobol1High ^ lowSobol1_[tableSlot(d)];
     }
     // Dimensions d, d + 1 from the permuted index's low digits (both kept
     // bit-reversed, as owenScramble wants them).
@@ -474,10 +473,10 @@ class ZSobolSampler {
     // (fillLowTable): 2.5% off a Cornell-box frame against walking for them
     // too, where the walks' hashes waited for each other.
     [[gnu::always_inline]] uint64_t lowDigits(int d, CachedDimension& c) {
-        const uint64_t sample = mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1);
-        if (tabulated(d)) return lowTable_[size_t(d) << tableLog2Spp_ | sample];
+        if (tabulated(d)) return lowTable_[tableSlot(d)];
         const int odd = log2Spp_ & 1;
         if (lowNodes_ == 0) return lowDigitsUncached(c.salt);
+        const uint64_t sample = sampleBits();
         const int lastBits = odd ? 1 : 2;
         if ((sample >> lastBits) == c.lastParent)
             return c.lastPrefix | lastLevelDigits(c.lastPermutation, sample, odd);
@@ -537,10 +536,12 @@ class ZSobolSampler {
     // Only the dimensions of the first three path vertices, which nearly every
     // sample draws; deeper ones, drawn by fewer samples, walk the tree.
     static constexpr int kTabulatedDimensions = dims::bounceBase(3);
-    int tableLog2Spp_ = 0;             // log2Spp_ where tabulated, else 0
-    std::vector<uint16_t> lowTable_;   // kTabulatedDimensions × 2^tableLog2Spp_
+    std::vector<uint16_t> lowTable_;   // kTabulatedDimensions × 2^log2Spp_ (empty: none)
     std::vector<uint32_t> lowSobol1_;  // their bit-reversed Sobol' dimension 1, alike
-    bool tabulated(int d) const { return tableLog2Spp_ > 0 && d < kTabulatedDimensions; }
+    bool tabulated(int d) const { return d < kTabulatedDimensions && !lowTable_.empty(); }
+    // The current sample's index bits, and its entry in dimension d's tables.
+    uint64_t sampleBits() const { return mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1); }
+    size_t tableSlot(int d) const { return size_t(d) << log2Spp_ | sampleBits(); }
     int lowNodes_ = 0;                      // nodes per dimension (0: no tree kept)
     std::vector<uint8_t> lowPermutations_;  // kCachedDimensions × lowNodes_
 
