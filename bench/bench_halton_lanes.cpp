@@ -45,7 +45,8 @@ void haltonLanes(benchmark::State& state, SimdLevel level, int count) {
 const bool registered = [] {
     const std::pair<const char*, SimdLevel> levels[] = {{"baseline", SimdLevel::Baseline},
                                                         {"avx2", SimdLevel::Avx2},
-                                                        {"avx512", SimdLevel::Avx512}};
+                                                        {"avx512", SimdLevel::Avx512},
+                                                        {"avx512vbmi", SimdLevel::Avx512Vbmi}};
     for (const auto& [name, level] : levels)
         for (int count : {8, 3}) {
             const std::string suffix = std::string(name) + "/lanes:" + std::to_string(count);

@@ -180,7 +180,7 @@ std::vector<uint64_t> haltonLaneIndices() {
 // baseline always).
 std::vector<SimdLevel> haltonLaneLevels() {
     std::vector<SimdLevel> levels = {SimdLevel::Baseline};
-    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512})
+    for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512, SimdLevel::Avx512Vbmi})
         if (level <= bestSimdLevel()) levels.push_back(level);
     return levels;
 }
@@ -192,8 +192,8 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
     // the scalar scramblers lane by lane.
     const std::vector<uint64_t> indices = haltonLaneIndices();
     const std::vector<SimdLevel> levels = haltonLaneLevels();
-    if (levels.size() < 3)
-        std::cout << "(this processor runs " << levels.size() - 1 << " of the 2 SIMD kernels)\n";
+    if (levels.size() < 4)
+        std::cout << "(this processor runs " << levels.size() - 1 << " of the 3 SIMD kernels)\n";
     for (uint64_t seed : {0, 5}) {
         const auto perms = haltonDigitPermutations(seed);
         for (const HaltonDimension& t : perms->dimensions) {
@@ -270,6 +270,18 @@ int digitOf(float x, int b, int k) {
     double v = x;
     for (int i = 0; i < k; ++i) v = v * b - std::floor(v * b);
     return int(std::floor(v * b));
+}
+
+TEST(HaltonDigits, NodeHashIsTheTopHalfOfMixBits) {
+    // Owen's node rotations hash with mixBitsHigh32, which leaves out
+    // mixBits's last step; the top halves must agree for every input — checked
+    // on the node names the rotations hash (small prefixes, digit positions in
+    // the top byte) and on random 64-bit values.
+    std::mt19937_64 random(11);
+    for (int i = 0; i < 200000; ++i) {
+        const uint64_t v = i < 100000 ? (uint64_t(i % 40) << 56) ^ uint64_t(i) : random();
+        ASSERT_EQ(mixBitsHigh32(v), uint32_t(mixBits(v) >> 32)) << v;
+    }
 }
 
 TEST(HaltonDigits, OwenPermutesEachDigitByItsOwnNode) {

@@ -9,7 +9,7 @@
 
 // GCC and Clang spell "compile this region for AVX2" differently. AVX2 alone,
 // without FMA, so that no multiply-add is contracted and rounding stays that of
-// the baseline code. The AVX-512 region may contract: in its one user
+// the baseline code. The AVX-512 regions may contract: in their one user
 // (halton_lanes.cpp) every multiply followed by an add is exact integer
 // arithmetic in doubles, where a fused multiply-add rounds nothing.
 #if defined(__clang__)
@@ -20,12 +20,20 @@
 #define PATHLAB_AVX512_BEGIN _Pragma("clang attribute push(__attribute__((target(\"avx2,avx512f,avx512dq,avx512vl\"))), apply_to = function)")
 // clang-format on
 #define PATHLAB_AVX512_END _Pragma("clang attribute pop")
+// clang-format off
+#define PATHLAB_AVX512_VBMI_BEGIN _Pragma("clang attribute push(__attribute__((target(\"avx2,avx512f,avx512dq,avx512vl,avx512bw,avx512vbmi\"))), apply_to = function)")
+// clang-format on
+#define PATHLAB_AVX512_VBMI_END _Pragma("clang attribute pop")
 #else
 #define PATHLAB_AVX2_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2\")")
 #define PATHLAB_AVX2_END _Pragma("GCC pop_options")
 #define PATHLAB_AVX512_BEGIN \
     _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,avx512f,avx512dq,avx512vl\")")
 #define PATHLAB_AVX512_END _Pragma("GCC pop_options")
+#define PATHLAB_AVX512_VBMI_BEGIN \
+    _Pragma("GCC push_options")   \
+        _Pragma("GCC target(\"avx2,avx512f,avx512dq,avx512vl,avx512bw,avx512vbmi\")")
+#define PATHLAB_AVX512_VBMI_END _Pragma("GCC pop_options")
 #endif
 
 namespace pathlab {
@@ -36,16 +44,21 @@ inline bool cpuHasAvx2() {
 }
 
 // The instruction sets a kernel may be compiled for, in order; Avx512 means
-// AVX-512 F, DQ and VL, with AVX2.
-enum class SimdLevel { Baseline, Avx2, Avx512 };
+// AVX-512 F, DQ and VL, with AVX2; Avx512Vbmi adds BW and VBMI, whose byte
+// permutes look up a table of up to 128 bytes held in two registers (Ice Lake,
+// Zen 4 and later).
+enum class SimdLevel { Baseline, Avx2, Avx512, Avx512Vbmi };
 
 inline SimdLevel bestSimdLevel() {
-    static const SimdLevel level = __builtin_cpu_supports("avx512f") &&
-                                           __builtin_cpu_supports("avx512dq") &&
-                                           __builtin_cpu_supports("avx512vl") && cpuHasAvx2()
-                                       ? SimdLevel::Avx512
-                                   : cpuHasAvx2() ? SimdLevel::Avx2
-                                                  : SimdLevel::Baseline;
+    static const SimdLevel level = [] {
+        if (!cpuHasAvx2()) return SimdLevel::Baseline;
+        if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512dq") ||
+            !__builtin_cpu_supports("avx512vl"))
+            return SimdLevel::Avx2;
+        return __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vbmi")
+                   ? SimdLevel::Avx512Vbmi
+                   : SimdLevel::Avx512;
+    }();
     return level;
 }
 

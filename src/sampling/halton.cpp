@@ -97,6 +97,25 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
                                              BaseDivider{uint32_t(base * base)}, owenHash, rotation,
                                              scrambled, 1.0 / base, 1.0 / (double(base) * base)});
     }
+    addByteTables();
+}
+
+void HaltonDigitPermutations::addByteTables() {
+    size_t total = 0;  // sized first: dimensions point into the vector
+    for (const HaltonDimension& t : dimensions)
+        if (t.base <= uint32_t(kMaxByteTableBase)) total += 2 * size_t(t.base);
+    byteTables.resize(total);
+    uint8_t* next = byteTables.data();
+    auto copy = [&next](const uint16_t* from, size_t count) {
+        uint8_t* start = next;
+        for (size_t i = 0; i < count; ++i) *next++ = uint8_t(from[i]);
+        return start;
+    };
+    for (HaltonDimension& t : dimensions) {
+        if (t.base > uint32_t(kMaxByteTableBase)) continue;
+        t.permutationBytes = copy(t.permutation, t.base);
+        t.childRotationBytes = copy(t.rotations + 1, t.base);
+    }
 }
 
 std::shared_ptr<const HaltonDigitPermutations> haltonDigitPermutations(uint64_t seed) {

@@ -95,6 +95,11 @@ struct HaltonDimension {
     // entry's read stays inside it.
     const uint16_t* scrambledDigits;
     double inverseBase, inversePairBase;  // RN(1 / b), RN(1 / b²)
+    // Owen, bases up to kMaxByteTableBase: `permutation` and the children's
+    // `rotations` again as bytes, which the AVX-512 VBMI lane draws hold in
+    // registers instead of gathering them; null for larger bases.
+    const uint8_t* permutationBytes = nullptr;
+    const uint8_t* childRotationBytes = nullptr;
 };
 
 // The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
@@ -105,12 +110,12 @@ struct HaltonDimension {
 // 2^32, the lanes past count too (the sampler pads them with its first index).
 // `limit` caps the instruction set (the tests run every one the processor has).
 void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
-                               SimdLevel limit = SimdLevel::Avx512);
+                               SimdLevel limit = SimdLevel::Avx512Vbmi);
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
-                        SimdLevel limit = SimdLevel::Avx512);
+                        SimdLevel limit = SimdLevel::Avx512Vbmi);
 // The same for the plain sampler: out[j] = radicalInverse(b, a[j]).
 void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float* out,
-                         SimdLevel limit = SimdLevel::Avx512);
+                         SimdLevel limit = SimdLevel::Avx512Vbmi);
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
@@ -119,6 +124,9 @@ struct HaltonDigitPermutations {
     // Pair tables stop here: b² entries per pair of digit positions (61: 3721
     // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together.
     static constexpr int kMaxPairBase = 61;
+    // Byte copies stop here: every digit and rotation fits a byte, and two
+    // byte permutes of two registers each look up 256 entries.
+    static constexpr int kMaxByteTableBase = 256;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
@@ -127,6 +135,7 @@ struct HaltonDigitPermutations {
     std::vector<uint16_t> rotations;        // 1 + b per tabulated base
     std::vector<uint16_t> pairTables;       // HaltonDimension::pairs of every base ≤ kMaxPairBase
     std::vector<uint16_t> scrambledDigits;  // HaltonDimension::scrambledDigits of every base
+    std::vector<uint8_t> byteTables;        // HaltonDimension's byte copies
     std::vector<HaltonDimension> dimensions;  // the first kTabulatedBases
     explicit HaltonDigitPermutations(uint64_t seed);
     DigitPermutation forDimension(int d, int base) const {
@@ -134,6 +143,9 @@ struct HaltonDigitPermutations {
                 hashValues(seed, base, 0x5244u), uint32_t(base)};
     }
     const uint16_t* shiftsForDimension(int d) const { return shifts.data() + d * kMaxDigits; }
+
+  private:
+    void addByteTables();
 };
 
 // The tables for a seed, shared by every sampler built with it.
@@ -273,8 +285,8 @@ inline uint32_t rotateDigit(uint32_t digit, uint32_t rotation, uint32_t base) {
 // below 2^40 for every base's float digits): the hash's top 32 bits scaled to
 // [0, base) (Lemire's multiply-shift range reduction, no division).
 inline uint32_t owenRotation(uint64_t dimensionHash, int k, uint64_t prefix, uint32_t base) {
-    const uint64_t node = mixBits(dimensionHash ^ (prefix | uint64_t(k) << 56));
-    return uint32_t(((node >> 32) * base) >> 32);
+    const uint64_t nodeHigh = mixBitsHigh32(dimensionHash ^ (prefix | uint64_t(k) << 56));
+    return uint32_t((nodeHigh * base) >> 32);
 }
 
 // Owen scrambling of a's first `digits` base-b digits (b = divider.base): digit k

@@ -13,7 +13,9 @@
 //     ones where the processor has no 64-bit lane multiply (AVX2 alone);
 //   - the final scale and floatBelow are the scalar code's operations.
 // Processors without AVX2 run the scalar loops lane by lane; those with
-// AVX-512DQ and VL run the AVX2 code with their 64-bit lane multiply.
+// AVX-512DQ and VL run the AVX2 code with their 64-bit lane multiply, and
+// those with AVX-512BW and VBMI too look up Owen's permutations and child
+// rotations with byte permutes instead of gathers.
 #include <immintrin.h>
 
 #include "core/simd_target.h"
@@ -26,7 +28,9 @@ constexpr int kRegisterLanes = 4;
 PATHLAB_AVX2_BEGIN
 namespace avx2 {
 #define PATHLAB_LANES_MULLO64 0
+#define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
+#undef PATHLAB_LANES_VBMI
 #undef PATHLAB_LANES_MULLO64
 }  // namespace avx2
 PATHLAB_AVX2_END
@@ -34,10 +38,22 @@ PATHLAB_AVX2_END
 PATHLAB_AVX512_BEGIN
 namespace avx512 {
 #define PATHLAB_LANES_MULLO64 1
+#define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
+#undef PATHLAB_LANES_VBMI
 #undef PATHLAB_LANES_MULLO64
 }  // namespace avx512
 PATHLAB_AVX512_END
+
+PATHLAB_AVX512_VBMI_BEGIN
+namespace avx512vbmi {
+#define PATHLAB_LANES_MULLO64 1
+#define PATHLAB_LANES_VBMI 1
+#include "sampling/halton_lanes_kernels.inc"
+#undef PATHLAB_LANES_VBMI
+#undef PATHLAB_LANES_MULLO64
+}  // namespace avx512vbmi
+PATHLAB_AVX512_VBMI_END
 
 namespace {
 // Lanes in registers of four, as many as the live lanes fill; one or two live
@@ -53,6 +69,8 @@ SimdLevel levelFor(int count, SimdLevel limit) {
 void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                                SimdLevel limit) {
     switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512Vbmi:
+            return avx512vbmi::randomDigitLanes(t, a, registersFor(count), out);
         case SimdLevel::Avx512:
             return avx512::randomDigitLanes(t, a, registersFor(count), out);
         case SimdLevel::Avx2:
@@ -65,6 +83,8 @@ void randomDigitScrambledLanes(const HaltonDimension& t, const uint64_t* a, int 
 void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float* out,
                          SimdLevel limit) {
     switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512Vbmi:
+            return avx512vbmi::radicalInverseLanes(b, a, registersFor(count), out);
         case SimdLevel::Avx512:
             return avx512::radicalInverseLanes(b, a, registersFor(count), out);
         case SimdLevel::Avx2:
@@ -77,6 +97,8 @@ void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                         SimdLevel limit) {
     switch (levelFor(count, limit)) {
+        case SimdLevel::Avx512Vbmi:
+            return avx512vbmi::owenLanes(t, a, registersFor(count), out);
         case SimdLevel::Avx512:
             return avx512::owenLanes(t, a, registersFor(count), out);
         case SimdLevel::Avx2:
