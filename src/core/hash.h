@@ -18,7 +18,6 @@ constexpr uint64_t mixBits(uint64_t v) {
     return v;
 }
 
-// Hashes any number of integral arguments into 64 bits, order-sensitive.
 // mixBits(v) >> 32 without mixBits's last step: v ^= v >> 33 leaves bits
 // 32–63 as they are, since v >> 33 is below 2^31. (Owen's tree rotations use
 // only the top half of each node's hash; the step saved is one of eight.)
@@ -30,6 +29,7 @@ constexpr uint32_t mixBitsHigh32(uint64_t v) {
     return uint32_t(v >> 32);
 }
 
+// Hashes any number of integral arguments into 64 bits, order-sensitive.
 template <typename... Args>
 constexpr uint64_t hashValues(Args... args) {
     uint64_t h = 0x9e3779b97f4a7c15ULL;
