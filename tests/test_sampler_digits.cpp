@@ -346,6 +346,7 @@ constexpr uint32_t kPinnedElements[5] = {58, 7, 4, 71, 5};
 std::vector<SimdLevel> scrambleLaneLevels() {
     std::vector<SimdLevel> levels = {SimdLevel::Baseline};
     if (cpuHasAvx2()) levels.push_back(SimdLevel::Avx2);
+    if (bestSimdLevel() >= SimdLevel::Avx512Vbmi) levels.push_back(SimdLevel::Avx512Vbmi);
     return levels;
 }
 
@@ -396,6 +397,30 @@ TEST(ZSobolDigits, LaneScramblesEqualTheScalarScramble) {
                 EXPECT_EQ(
                     bits(x[j]),
                     bits(fixedPointToFloat(reverseBits32(laineKarrasPermutation(v[j], seed)))));
+        }
+    }
+}
+
+TEST(ZSobolDigits, PairedLaneScramblesEqualTheScalarScramble) {
+    // owenScrambleReversedLanes2D, with every instruction set available: each
+    // pair is the two dimensions' scalar scrambles, each with its own seed.
+    std::mt19937 rng(6);
+    for (SimdLevel level : scrambleLaneLevels()) {
+        for (int round = 0; round < 200; ++round) {
+            uint32_t vx[kCameraPacketSamples], vy[kCameraPacketSamples];
+            for (uint32_t& v : vx) v = uint32_t(rng());
+            for (uint32_t& v : vy) v = uint32_t(rng());
+            const auto xSeed = uint32_t(rng()), ySeed = uint32_t(rng());
+            float xy[2 * kCameraPacketSamples];
+            owenScrambleReversedLanes2D(vx, vy, xSeed, ySeed, xy, level);
+            for (int j = 0; j < kCameraPacketSamples; ++j) {
+                EXPECT_EQ(
+                    bits(xy[2 * j]),
+                    bits(fixedPointToFloat(reverseBits32(laineKarrasPermutation(vx[j], xSeed)))));
+                EXPECT_EQ(
+                    bits(xy[2 * j + 1]),
+                    bits(fixedPointToFloat(reverseBits32(laineKarrasPermutation(vy[j], ySeed)))));
+            }
         }
     }
 }

@@ -30,6 +30,11 @@ void owenSobolLanes2D(const uint32_t* index, uint32_t indexSeed, uint32_t xSeed,
 // R(L_seed(reversed)), as floats.
 void owenScrambleReversedLanes(const uint32_t* reversed, uint32_t seed, float* x,
                                SimdLevel limit = SimdLevel::Avx512);
+// Both dimensions of a 2D draw in one call, written as pairs:
+// xy[2j] = R(L_xSeed(reversedX[j])), xy[2j + 1] = R(L_ySeed(reversedY[j])).
+void owenScrambleReversedLanes2D(const uint32_t* reversedX, const uint32_t* reversedY,
+                                 uint32_t xSeed, uint32_t ySeed, float* xy,
+                                 SimdLevel limit = SimdLevel::Avx512Vbmi);
 
 // out[i] = permutationElement(i, d.n, seed) (lowdiscrepancy.h) for every i
 // in [0, d.n): a whole permutation, its elements side by side. One element's

@@ -116,17 +116,28 @@ void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
     // (2n, 2n + 1 on an odd last level) get them with their own digit
     // appended. Backwards, so that no entry is overwritten before it is read.
     // The hashes are independent of one another and overlap in the pipeline.
+    // The last level also stores each sample's Sobol' dimension 1 part, from
+    // the value in hand: reading the entries back after the level's stores
+    // waited for those stores (a quarter of this function's time).
     uint16_t* row = lowTable_.data() + (size_t(d) << log2Spp_);
+    uint32_t* sobol1 = lowSobol1_.data() + (size_t(d) << log2Spp_);
+    // Below 2^8, so the first byte's table alone (reversedSobol1).
+    static_assert(kMaxTableLog2Spp <= 8);
+    const uint32_t* bytes = reversedSobol1Bytes_;
     const int odd = log2Spp_ & 1;
     row[0] = 0;
     uint64_t count = 1;
     for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2, count *= 4) {
         const uint64_t pixelDigits = pixelMorton_ >> (shift + 2);
+        const bool last = !odd && shift == 0;
         for (uint64_t n = count; n-- > 0;) {
             const unsigned perm = zsobol::digitPermutation(pixelDigits | n, salt);
             const auto prefix = uint16_t(row[n] << 2);
-            for (unsigned digit = 0; digit < 4; ++digit)
-                row[4 * n + digit] = uint16_t(prefix | ((perm >> (2 * digit)) & 3));
+            for (unsigned digit = 0; digit < 4; ++digit) {
+                const auto value = uint16_t(prefix | ((perm >> (2 * digit)) & 3));
+                row[4 * n + digit] = value;
+                if (last) sobol1[4 * n + digit] = bytes[value];
+            }
         }
     }
     if (odd) {
@@ -136,27 +147,42 @@ void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
             const auto prefix = uint16_t(row[n] << 1);
             row[2 * n] = uint16_t(prefix | flip);
             row[2 * n + 1] = uint16_t(prefix | (flip ^ 1));
+            sobol1[2 * n] = bytes[prefix | flip];
+            sobol1[2 * n + 1] = bytes[prefix | (flip ^ 1)];
         }
     }
-    // Below 2^8, so the first byte's table alone (reversedSobol1).
-    static_assert(kMaxTableLog2Spp <= 8);
-    uint32_t* sobol1 = lowSobol1_.data() + (size_t(d) << log2Spp_);
-    for (size_t sample = 0; sample < (size_t(1) << log2Spp_); ++sample)
-        sobol1[sample] = reversedSobol1Bytes_[row[sample]];
 }
 
 void ZSobolSampler::fillHighDigits(CachedDimension& c) const {
     // The digits at or above bit log2Spp_ (digit boundaries fall on it for
     // even and odd log2Spp_ alike) and the digits above them come from the
-    // pixel only.
+    // pixel only. A digit's permuted value depends on the Morton bits at and
+    // above it, so the digits above the highest bit in which this pixel's code
+    // differs from the one the entry was computed for keep their values: from
+    // one pixel of a tile to the next, about two digits are hashed instead of
+    // all of them (log2 of the resolution).
     const int odd = log2Spp_ & 1;
+    const uint64_t morton = mortonIndex_ >> log2Spp_ << log2Spp_;
+    int shift = 2 * (base4Digits_ - 1) - odd;
     uint64_t index = 0;
-    for (int shift = 2 * (base4Digits_ - 1) - odd; shift >= log2Spp_; shift -= 2)
+    if (c.highMorton != ~uint64_t(0)) {
+        const uint64_t changed = morton ^ c.highMorton;
+        if (changed == 0) return;
+        const int highestChanged = 63 - __builtin_clzll(changed);
+        while (shift > highestChanged) shift -= 2;
+        index = shift + 2 < 64 ? c.highIndex >> (shift + 2) << (shift + 2) : 0;
+    }
+    for (; shift >= log2Spp_; shift -= 2)
         index |= uint64_t(zsobol::permuteDigit((mortonIndex_ >> shift) & 3,
                                                mortonIndex_ >> (shift + 2), c.salt))
                  << shift;
+    // Sobol' dimension 1 is linear over GF(2): only the changed bits' part.
+    c.reversedSobol1High =
+        c.highMorton == ~uint64_t(0)
+            ? reverseBits32(sobolBits(matrices_, index, 1))
+            : c.reversedSobol1High ^ reverseBits32(sobolBits(matrices_, index ^ c.highIndex, 1));
     c.highIndex = index;
-    c.reversedSobol1High = reverseBits32(sobolBits(matrices_, index, 1));
+    c.highMorton = morton;
 }
 
 }  // namespace pathlab

@@ -339,8 +339,13 @@ class ZSobolSampler {
         startPixelSample(p, indices[0], dim);
         CachedDimension& c = cached(dim);
         uint32_t index[kCameraPacketSamples] = {};
-        for (int j = 0; j < count; ++j)
-            index[j] = uint32_t(c.highIndex | laneLowDigits(c, dim, indices[j]));
+        if (tabulated(dim)) {
+            const uint16_t* low = lowTable_.data() + (size_t(dim) << log2Spp_);
+            for (int j = 0; j < count; ++j) index[j] = uint32_t(c.highIndex) | low[indices[j]];
+        } else {
+            for (int j = 0; j < count; ++j)
+                index[j] = uint32_t(c.highIndex | laneLowDigits(c, dim, indices[j]));
+        }
         float x[kCameraPacketSamples];
         owenScrambleReversedLanes(index, c.seed1D, x);
         for (int j = 0; j < count; ++j) out[j] = x[j];
@@ -352,15 +357,25 @@ class ZSobolSampler {
         startPixelSample(p, indices[0], dim);
         CachedDimension& c = cached(dim);
         uint32_t index[kCameraPacketSamples] = {}, reversed1[kCameraPacketSamples] = {};
-        for (int j = 0; j < count; ++j) {
-            const uint64_t low = laneLowDigits(c, dim, indices[j]);
-            index[j] = uint32_t(c.highIndex | low);
-            reversed1[j] = lowReversedSobol1(dim, c, low);
+        if (tabulated(dim)) {
+            // Two loads per lane from the pixel's tables, no member written.
+            const uint16_t* low = lowTable_.data() + (size_t(dim) << log2Spp_);
+            const uint32_t* lowSobol1 = lowSobol1_.data() + (size_t(dim) << log2Spp_);
+            const auto high = uint32_t(c.highIndex);
+            for (int j = 0; j < count; ++j) {
+                index[j] = high | low[indices[j]];
+                reversed1[j] = c.reversedSobol1High ^ lowSobol1[indices[j]];
+            }
+        } else {
+            for (int j = 0; j < count; ++j) {
+                const uint64_t low = laneLowDigits(c, dim, indices[j]);
+                index[j] = uint32_t(c.highIndex | low);
+                reversed1[j] = lowReversedSobol1(dim, c, low);
+            }
         }
-        float x[kCameraPacketSamples], y[kCameraPacketSamples];
-        owenScrambleReversedLanes(index, c.seeds2D[0], x);
-        owenScrambleReversedLanes(reversed1, c.seeds2D[1], y);
-        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+        float xy[2 * kCameraPacketSamples];
+        owenScrambleReversedLanes2D(index, reversed1, c.seeds2D[0], c.seeds2D[1], xy);
+        for (int j = 0; j < count; ++j) out[j] = {xy[2 * j], xy[2 * j + 1]};
         dimension_ = dim + 2;
     }
 
@@ -388,6 +403,8 @@ class ZSobolSampler {
         // (bit-reversed) Sobol' dimension 1 of them.
         uint64_t highIndex = 0;
         uint32_t reversedSobol1High = 0;
+        // The pixel's Morton code they were computed for (~0: none yet).
+        uint64_t highMorton = ~uint64_t(0);
         // The last draw's node of the tree's last level (see lowDigits): its
         // parent's number (~0: none yet in this pixel), the permuted digits
         // above it and its permutation (or flip bit).
