@@ -401,6 +401,30 @@ TEST(ZSobolDigits, LaneScramblesEqualTheScalarScramble) {
     }
 }
 
+TEST(ZSobolDigits, LevelPermutationsEqualTheNodeByNodeHash) {
+    // zsobol::digitPermutations, with every instruction set available, against
+    // digitPermutation node by node: levels of 8, 16 and 64 nodes, Morton
+    // prefixes up to 2^40 (the kernel's remainder goes through doubles), and
+    // the permutation chosen must be one of the 24 (all 24 turn up).
+    std::mt19937_64 rng(7);
+    for (SimdLevel level : scrambleLaneLevels()) {
+        std::set<uint8_t> seen;
+        for (int round = 0; round < 300; ++round) {
+            const uint32_t count = round % 3 == 0 ? 8 : round % 3 == 1 ? 16 : 64;
+            const uint64_t first = (rng() >> 24) & ~uint64_t(count - 1);
+            const uint64_t salt = rng();
+            uint8_t out[64];
+            zsobol::digitPermutations(first, salt, count, out, level);
+            for (uint32_t n = 0; n < count; ++n) {
+                ASSERT_EQ(out[n], zsobol::digitPermutation(first | n, salt))
+                    << "first " << first << " n " << n;
+                seen.insert(out[n]);
+            }
+        }
+        EXPECT_EQ(seen.size(), 24u);
+    }
+}
+
 TEST(ZSobolDigits, PairedLaneScramblesEqualTheScalarScramble) {
     // owenScrambleReversedLanes2D, with every instruction set available: each
     // pair is the two dimensions' scalar scrambles, each with its own seed.

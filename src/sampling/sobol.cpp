@@ -1,9 +1,62 @@
 #include "sampling/sobol.h"
 
+#include <immintrin.h>
+
 #include <stdexcept>
 #include <vector>
 
+#include "core/simd_target.h"
+
 namespace pathlab {
+
+// zsobol::digitPermutation for eight consecutive nodes at a time: mixBits
+// with 64-bit lane multiplies, then (h >> 24) mod 24 through doubles — h >> 24
+// is below 2^40, so ⌊(x + ½)/24⌋ is exact from the rounded reciprocal (its
+// error, about 2^-16.6, is far below the ½/24 by which (x + ½)/24 misses an
+// integer) — and the 24 permutations looked up by a byte permute. The masked
+// intrinsics, with every lane set: GCC 12's unmasked ones pass an undefined
+// operand that -Wall reports.
+PATHLAB_AVX512_VBMI_BEGIN
+namespace avx512vbmi {
+void digitPermutations(uint64_t first, uint64_t salt, uint32_t count, uint8_t* out) {
+    constexpr __mmask8 kAll = 0xff;
+    const __m512i table = _mm512_maskz_loadu_epi8(0xffffff, zsobol::kDigitPermutations);
+    const __m512i lanes = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+    const __m512d inverse24 = _mm512_set1_pd(1.0 / 24);
+    for (uint32_t n = 0; n < count; n += 8) {
+        __m512i v = _mm512_xor_si512(_mm512_add_epi64(_mm512_set1_epi64(int64_t(first | n)), lanes),
+                                     _mm512_set1_epi64(int64_t(salt)));
+        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 31));
+        v = _mm512_mullo_epi64(v, _mm512_set1_epi64(int64_t(0x7fb5d329728ea185ULL)));
+        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 27));
+        v = _mm512_mullo_epi64(v, _mm512_set1_epi64(int64_t(0x81dadef4bc2dd44dULL)));
+        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 33));
+        const __m512i x = _mm512_maskz_srli_epi64(kAll, v, 24);
+        const __m512d quotient = _mm512_maskz_roundscale_pd(
+            kAll,
+            _mm512_mul_pd(_mm512_add_pd(_mm512_maskz_cvtepu64_pd(kAll, x), _mm512_set1_pd(0.5)),
+                          inverse24),
+            _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+        const __m512i remainder = _mm512_sub_epi64(
+            x,
+            _mm512_mullo_epi64(_mm512_maskz_cvttpd_epu64(kAll, quotient), _mm512_set1_epi64(24)));
+        // Each lane's remainder is its low byte; the permutation lands there.
+        const __m512i permutation =
+            _mm512_maskz_permutexvar_epi8(0x0101010101010101ULL, remainder, table);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(out + n),
+                         _mm512_maskz_cvtepi64_epi8(kAll, permutation));
+    }
+}
+}  // namespace avx512vbmi
+PATHLAB_AVX512_VBMI_END
+
+void zsobol::digitPermutations(uint64_t first, uint64_t salt, uint32_t count, uint8_t* out,
+                               SimdLevel limit) {
+    if (simdLevelUpTo(limit) >= SimdLevel::Avx512Vbmi)
+        return avx512vbmi::digitPermutations(first, salt, count, out);
+    for (uint32_t n = 0; n < count; ++n) out[n] = digitPermutation(first | n, salt);
+}
+
 namespace {
 
 // The top m bits of dimensions 0 and 1 of Gray-coded index g, packed as
@@ -127,11 +180,17 @@ void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
     const int odd = log2Spp_ & 1;
     row[0] = 0;
     uint64_t count = 1;
+    // A level's permutations: from the lanes' kernel for levels of 16 or 64
+    // nodes (64 and 256 spp's last), one by one for the smaller ones.
+    uint8_t permutations[size_t(1) << (kMaxTableLog2Spp - 2)];
     for (int shift = log2Spp_ - 2; shift >= odd; shift -= 2, count *= 4) {
         const uint64_t pixelDigits = pixelMorton_ >> (shift + 2);
         const bool last = !odd && shift == 0;
+        const bool lanes = count >= 16;
+        if (lanes) zsobol::digitPermutations(pixelDigits, salt, uint32_t(count), permutations);
         for (uint64_t n = count; n-- > 0;) {
-            const unsigned perm = zsobol::digitPermutation(pixelDigits | n, salt);
+            const unsigned perm =
+                lanes ? permutations[n] : zsobol::digitPermutation(pixelDigits | n, salt);
             const auto prefix = uint16_t(row[n] << 2);
             for (unsigned digit = 0; digit < 4; ++digit) {
                 const auto value = uint16_t(prefix | ((perm >> (2 * digit)) & 3));

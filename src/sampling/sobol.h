@@ -278,6 +278,12 @@ inline uint8_t digitPermutation(uint64_t higherDigits, uint64_t salt) {
 inline unsigned permuteDigit(unsigned digit, uint64_t higherDigits, uint64_t salt) {
     return (digitPermutation(higherDigits, salt) >> (2 * digit)) & 3;
 }
+// out[n] = digitPermutation(first | n, salt) for n in [0, count), count a
+// multiple of 8 and first's low log2(count) bits zero: a level of a pixel's
+// low-digit tree, its hashes side by side (eight 64-bit lanes with AVX-512
+// DQ and VBMI). `limit` caps the instruction set (tests run each one).
+void digitPermutations(uint64_t first, uint64_t salt, uint32_t count, uint8_t* out,
+                       SimdLevel limit = SimdLevel::Avx512Vbmi);
 }  // namespace zsobol
 
 // `zsobol`: Morton-ordered, base-4-digit-permuted, Owen-scrambled Sobol'.
