@@ -35,6 +35,9 @@ $(PGO_DATA)/trained: $(PGO_SOURCES)
 	@cmake --build $(PGO_BUILD) -j $(JOBS) --target pathlab
 	@rm -rf $(PGO_DATA) && mkdir -p $(PGO_DATA)
 	@scripts/pgo-train.sh $(PGO_BUILD)/pathlab
+	@# Every release object was compiled with the old profile, and ninja does
+	@# not track the profile files: clean, so that all of them use the new one.
+	@if [ -f $(BUILD)/build.ninja ]; then cmake --build $(BUILD) --target clean >/dev/null; fi
 	@touch $@
 
 build: setup $(PGO_STAMP)

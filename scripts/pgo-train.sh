@@ -17,7 +17,7 @@ if "$pathlab" render --scene wolf --size 8x8 --spp 1 -o "$work/probe.exr" >/dev/
 fi
 for scene in "${scenes[@]}"; do
   for sampler in $("$pathlab" samplers | awk 'NR > 1 { print $1 }'); do
-    "$pathlab" render --scene "$scene" --sampler "$sampler" --size 64x64 --spp 16 \
+    "$pathlab" render --scene "$scene" --sampler "$sampler" --size 64x64 --spp 64 \
       -o "$work/$scene-$sampler.exr" >/dev/null
   done
 done
