@@ -172,8 +172,8 @@ void ZSobolSampler::fillLowTable(int d, uint64_t salt) {
     // The last level also stores each sample's Sobol' dimension 1 part, from
     // the value in hand: reading the entries back after the level's stores
     // waited for those stores (a quarter of this function's time).
-    uint16_t* row = lowTable_.data() + (size_t(d) << log2Spp_);
-    uint32_t* sobol1 = lowSobol1_.data() + (size_t(d) << log2Spp_);
+    uint16_t* row = lowTable_.data() + tableRow(d);
+    uint32_t* sobol1 = lowSobol1_.data() + tableRow(d);
     // Below 2^8, so the first byte's table alone (reversedSobol1).
     static_assert(kMaxTableLog2Spp <= 8);
     const uint32_t* bytes = reversedSobol1Bytes_;
@@ -235,11 +235,9 @@ void ZSobolSampler::fillHighDigits(CachedDimension& c) const {
         index |= uint64_t(zsobol::permuteDigit((mortonIndex_ >> shift) & 3,
                                                mortonIndex_ >> (shift + 2), c.salt))
                  << shift;
-    // Sobol' dimension 1 is linear over GF(2): only the changed bits' part.
-    c.reversedSobol1High =
-        c.highMorton == ~uint64_t(0)
-            ? reverseBits32(sobolBits(matrices_, index, 1))
-            : c.reversedSobol1High ^ reverseBits32(sobolBits(matrices_, index ^ c.highIndex, 1));
+    // Sobol' dimension 1 is linear over GF(2): only the changed bits' part
+    // (the first time, all of them: both start at zero).
+    c.reversedSobol1High ^= reverseBits32(sobolBits(matrices_, index ^ c.highIndex, 1));
     c.highIndex = index;
     c.highMorton = morton;
 }

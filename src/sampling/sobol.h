@@ -346,7 +346,7 @@ class ZSobolSampler {
         CachedDimension& c = cached(dim);
         uint32_t index[kCameraPacketSamples] = {};
         if (tabulated(dim)) {
-            const uint16_t* low = lowTable_.data() + (size_t(dim) << log2Spp_);
+            const uint16_t* low = lowTable_.data() + tableRow(dim);
             for (int j = 0; j < count; ++j) index[j] = uint32_t(c.highIndex) | low[indices[j]];
         } else {
             for (int j = 0; j < count; ++j)
@@ -365,8 +365,8 @@ class ZSobolSampler {
         uint32_t index[kCameraPacketSamples] = {}, reversed1[kCameraPacketSamples] = {};
         if (tabulated(dim)) {
             // Two loads per lane from the pixel's tables, no member written.
-            const uint16_t* low = lowTable_.data() + (size_t(dim) << log2Spp_);
-            const uint32_t* lowSobol1 = lowSobol1_.data() + (size_t(dim) << log2Spp_);
+            const uint16_t* low = lowTable_.data() + tableRow(dim);
+            const uint32_t* lowSobol1 = lowSobol1_.data() + tableRow(dim);
             const auto high = uint32_t(c.highIndex);
             for (int j = 0; j < count; ++j) {
                 index[j] = high | low[indices[j]];
@@ -564,7 +564,8 @@ class ZSobolSampler {
     bool tabulated(int d) const { return d < kTabulatedDimensions && !lowTable_.empty(); }
     // The current sample's index bits, and its entry in dimension d's tables.
     uint64_t sampleBits() const { return mortonIndex_ & ((uint64_t(1) << log2Spp_) - 1); }
-    size_t tableSlot(int d) const { return size_t(d) << log2Spp_ | sampleBits(); }
+    size_t tableRow(int d) const { return size_t(d) << log2Spp_; }  // dimension d's first entry
+    size_t tableSlot(int d) const { return tableRow(d) | sampleBits(); }
     int lowNodes_ = 0;                      // nodes per dimension (0: no tree kept)
     std::vector<uint8_t> lowPermutations_;  // kCachedDimensions × lowNodes_
 
