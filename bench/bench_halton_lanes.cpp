@@ -1,7 +1,7 @@
 // The Halton lane kernels (sampling/halton_lanes.cpp) per
 // instruction set: nanoseconds per value over the dimensions a path of depth 8
 // draws (2 … 57), for the first packet's indices (samples 0–7) of each pixel
-// of a 512×512 image's first row, with 8 and with 3 live lanes (a batch's
+// of a 512×512 image's first row, with 8, 3 and 2 live lanes (a batch's
 // paths die as they bounce). Levels this processor lacks are skipped.
 #include <benchmark/benchmark.h>
 
@@ -48,7 +48,7 @@ const bool registered = [] {
                                                         {"avx512", SimdLevel::Avx512},
                                                         {"avx512vbmi", SimdLevel::Avx512Vbmi}};
     for (const auto& [name, level] : levels)
-        for (int count : {8, 3}) {
+        for (int count : {8, 3, 2}) {
             const std::string suffix = std::string(name) + "/lanes:" + std::to_string(count);
             benchmark::RegisterBenchmark(("HaltonLanes/plain/" + suffix).c_str(),
                                          haltonLanes<HaltonScrambling::None>, level, count);

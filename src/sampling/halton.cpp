@@ -103,18 +103,21 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
 void HaltonDigitPermutations::addByteTables() {
     size_t total = 0;  // sized first: dimensions point into the vector
     for (const HaltonDimension& t : dimensions)
-        if (t.base <= uint32_t(kMaxByteTableBase)) total += 2 * size_t(t.base);
+        if (t.base <= uint32_t(kMaxByteTableBase))
+            total += (t.base <= uint32_t(kMaxWrapFreeBase) ? 3 : 2) * size_t(t.base);
     byteTables.resize(total);
     uint8_t* next = byteTables.data();
-    auto copy = [&next](const uint16_t* from, size_t count) {
+    // from[i mod size] for i < count.
+    auto copy = [&next](const uint16_t* from, size_t size, size_t count) {
         uint8_t* start = next;
-        for (size_t i = 0; i < count; ++i) *next++ = uint8_t(from[i]);
+        for (size_t i = 0; i < count; ++i) *next++ = uint8_t(from[i % size]);
         return start;
     };
     for (HaltonDimension& t : dimensions) {
         if (t.base > uint32_t(kMaxByteTableBase)) continue;
-        t.permutationBytes = copy(t.permutation, t.base);
-        t.childRotationBytes = copy(t.rotations + 1, t.base);
+        const bool wrapFree = t.base <= uint32_t(kMaxWrapFreeBase);
+        t.permutationBytes = copy(t.permutation, t.base, (wrapFree ? 2 : 1) * size_t(t.base));
+        t.childRotationBytes = copy(t.rotations + 1, t.base, t.base);
     }
 }
 

@@ -97,7 +97,10 @@ struct HaltonDimension {
     double inverseBase, inversePairBase;  // RN(1 / b), RN(1 / b²)
     // Owen, bases up to kMaxByteTableBase: `permutation` and the children's
     // `rotations` again as bytes, which the AVX-512 VBMI lane draws hold in
-    // registers instead of gathering them; null for larger bases.
+    // registers instead of gathering them; null for larger bases. Up to
+    // kMaxWrapFreeBase the permutation's bytes are written twice over
+    // (entry i is π_b(i mod b) for i < 2b), so that a rotated digit d + r
+    // looks its value up without first wrapping the sum below b.
     const uint8_t* permutationBytes = nullptr;
     const uint8_t* childRotationBytes = nullptr;
 };
@@ -127,6 +130,8 @@ struct HaltonDigitPermutations {
     // Byte copies stop here: every digit and rotation fits a byte, and two
     // byte permutes of two registers each look up 256 entries.
     static constexpr int kMaxByteTableBase = 256;
+    // Doubled permutations stop here: 2b entries in two registers.
+    static constexpr int kMaxWrapFreeBase = 64;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;

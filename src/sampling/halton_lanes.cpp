@@ -5,8 +5,9 @@
 // the scalar digit loops of halton.h give (tested):
 //   - ⌊a / b⌋ in double precision: for integral a < 2^32 and b ≤ 61² (the
 //     pair tables' largest divisor), (a + ½)/b lies at least ½/b > 2^-13 from
-//     an integer, and the product (a + ½)·RN(1/b) misses it by under 2^-21,
-//     so its floor is the quotient;
+//     an integer, and the product (a + ½)·RN(1/b) misses it by under 2^-21
+//     (fused as a·RN(1/b) + RN(1/b)/2 where the processor has AVX-512), so
+//     its floor is the quotient;
 //   - the digits, the node prefixes and the scrambled integer stay below 2^52
 //     (b^digits < 2^42 for every tabulated base), where doubles are exact;
 //   - Owen's node hash is mixBits's 64-bit multiplies, built from 32 × 32-bit
@@ -28,9 +29,11 @@ constexpr int kRegisterLanes = 4;
 PATHLAB_AVX2_BEGIN
 namespace avx2 {
 #define PATHLAB_LANES_MULLO64 0
+#define PATHLAB_LANES_FMA 0
 #define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
+#undef PATHLAB_LANES_FMA
 #undef PATHLAB_LANES_MULLO64
 }  // namespace avx2
 PATHLAB_AVX2_END
@@ -38,9 +41,11 @@ PATHLAB_AVX2_END
 PATHLAB_AVX512_BEGIN
 namespace avx512 {
 #define PATHLAB_LANES_MULLO64 1
+#define PATHLAB_LANES_FMA 1
 #define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
+#undef PATHLAB_LANES_FMA
 #undef PATHLAB_LANES_MULLO64
 }  // namespace avx512
 PATHLAB_AVX512_END
@@ -48,9 +53,11 @@ PATHLAB_AVX512_END
 PATHLAB_AVX512_VBMI_BEGIN
 namespace avx512vbmi {
 #define PATHLAB_LANES_MULLO64 1
+#define PATHLAB_LANES_FMA 1
 #define PATHLAB_LANES_VBMI 1
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
+#undef PATHLAB_LANES_FMA
 #undef PATHLAB_LANES_MULLO64
 }  // namespace avx512vbmi
 PATHLAB_AVX512_VBMI_END
@@ -63,13 +70,19 @@ int registersFor(int count) {
 }
 
 // kernel(LaneKernels of the best instruction set up to `limit`, registers) for
-// three or more live lanes; otherwise, or without AVX2, scalar(j) for each lane.
-// Inlined into each caller, as the switches it replaces were: out of line it
-// added a call per draw (halton-owen frames about 1% slower).
-template <class Kernel, class Scalar>
+// three or more live lanes (two for Owen's kernel with byte permutes, which
+// draws one register of lanes in less time than two scalar loops:
+// HaltonLanes/owen/…/lanes:2 in pathlab_bench); otherwise, or without AVX2,
+// scalar(j) for each lane. Inlined into each caller, as the switches it
+// replaces were: out of line it added a call per draw (halton-owen frames
+// about 1% slower).
+template <bool kTwoLanesOnVbmi = false, class Kernel, class Scalar>
 [[gnu::always_inline]] inline void dispatch(int count, SimdLevel limit, const Kernel& kernel,
                                             const Scalar& scalar) {
-    switch (count > 2 ? simdLevelUpTo(limit) : SimdLevel::Baseline) {
+    SimdLevel level = count > 1 ? simdLevelUpTo(limit) : SimdLevel::Baseline;
+    if (count == 2 && !(kTwoLanesOnVbmi && level == SimdLevel::Avx512Vbmi))
+        level = SimdLevel::Baseline;
+    switch (level) {
         case SimdLevel::Avx512Vbmi:
             return kernel(avx512vbmi::LaneKernels{}, registersFor(count));
         case SimdLevel::Avx512:
@@ -100,7 +113,7 @@ void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float
 
 void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, float* out,
                         SimdLevel limit) {
-    dispatch(
+    dispatch<true>(
         count, limit, [&](auto kernels, int registers) { kernels.owen(t, a, registers, out); },
         [&](int j) { out[j] = owenScrambled(t, a[j]); });
 }
