@@ -79,10 +79,9 @@ int registersFor(int count) {
 template <bool kTwoLanesOnVbmi = false, class Kernel, class Scalar>
 [[gnu::always_inline]] inline void dispatch(int count, SimdLevel limit, const Kernel& kernel,
                                             const Scalar& scalar) {
-    SimdLevel level = count > 1 ? simdLevelUpTo(limit) : SimdLevel::Baseline;
-    if (count == 2 && !(kTwoLanesOnVbmi && level == SimdLevel::Avx512Vbmi))
-        level = SimdLevel::Baseline;
-    switch (level) {
+    const SimdLevel best = simdLevelUpTo(limit);
+    const int fewestLanes = kTwoLanesOnVbmi && best == SimdLevel::Avx512Vbmi ? 2 : 3;
+    switch (count >= fewestLanes ? best : SimdLevel::Baseline) {
         case SimdLevel::Avx512Vbmi:
             return kernel(avx512vbmi::LaneKernels{}, registersFor(count));
         case SimdLevel::Avx512:
