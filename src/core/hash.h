@@ -8,24 +8,30 @@
 
 namespace pathlab {
 
-// 64-bit finaliser (Stafford's "Mix13" variant of MurmurHash3's fmix64).
-constexpr uint64_t mixBits(uint64_t v) {
+// mixBits's steps before its last, for a uint64_t or a GCC vector of them:
+// the lane kernels (sobol.cpp, halton_lanes_kernels.inc) hash with the same
+// code, compiled there for their instruction set (a 64-bit lane multiply is
+// one instruction with AVX-512DQ, three 32-bit ones with AVX2 alone). In
+// place, so that no vector is passed by value outside those regions.
+template <typename U>
+[[gnu::always_inline]] constexpr void mixBitsMultiplySteps(U& v) {
     v ^= v >> 31;
     v *= 0x7fb5d329728ea185ULL;
     v ^= v >> 27;
     v *= 0x81dadef4bc2dd44dULL;
-    v ^= v >> 33;
-    return v;
+}
+
+// 64-bit finaliser (Stafford's "Mix13" variant of MurmurHash3's fmix64).
+constexpr uint64_t mixBits(uint64_t v) {
+    mixBitsMultiplySteps(v);
+    return v ^ (v >> 33);
 }
 
 // mixBits(v) >> 32 without mixBits's last step: v ^= v >> 33 leaves bits
 // 32–63 as they are, since v >> 33 is below 2^31. (Owen's tree rotations use
 // only the top half of each node's hash; the step saved is one of eight.)
 constexpr uint32_t mixBitsHigh32(uint64_t v) {
-    v ^= v >> 31;
-    v *= 0x7fb5d329728ea185ULL;
-    v ^= v >> 27;
-    v *= 0x81dadef4bc2dd44dULL;
+    mixBitsMultiplySteps(v);
     return uint32_t(v >> 32);
 }
 

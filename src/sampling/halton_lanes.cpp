@@ -10,8 +10,9 @@
 //     its floor is the quotient;
 //   - the digits, the node prefixes and the scrambled integer stay below 2^52
 //     (b^digits < 2^42 for every tabulated base), where doubles are exact;
-//   - Owen's node hash is mixBits's 64-bit multiplies, built from 32 × 32-bit
-//     ones where the processor has no 64-bit lane multiply (AVX2 alone);
+//   - Owen's node hash is core/hash.h's code on 64-bit lanes (GCC builds
+//     their multiplies from 32 × 32-bit ones where the processor has no 64-bit
+//     lane multiply, AVX2 alone);
 //   - the final scale and floatBelow are the scalar code's operations.
 // Processors without AVX2 run the scalar loops lane by lane; those with
 // AVX-512DQ and VL run the AVX2 code with their 64-bit lane multiply, and
@@ -28,37 +29,31 @@ constexpr int kRegisterLanes = 4;
 
 PATHLAB_AVX2_BEGIN
 namespace avx2 {
-#define PATHLAB_LANES_MULLO64 0
 #define PATHLAB_LANES_FMA 0
 #define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
 #undef PATHLAB_LANES_FMA
-#undef PATHLAB_LANES_MULLO64
 }  // namespace avx2
 PATHLAB_AVX2_END
 
 PATHLAB_AVX512_BEGIN
 namespace avx512 {
-#define PATHLAB_LANES_MULLO64 1
 #define PATHLAB_LANES_FMA 1
 #define PATHLAB_LANES_VBMI 0
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
 #undef PATHLAB_LANES_FMA
-#undef PATHLAB_LANES_MULLO64
 }  // namespace avx512
 PATHLAB_AVX512_END
 
 PATHLAB_AVX512_VBMI_BEGIN
 namespace avx512vbmi {
-#define PATHLAB_LANES_MULLO64 1
 #define PATHLAB_LANES_FMA 1
 #define PATHLAB_LANES_VBMI 1
 #include "sampling/halton_lanes_kernels.inc"
 #undef PATHLAB_LANES_VBMI
 #undef PATHLAB_LANES_FMA
-#undef PATHLAB_LANES_MULLO64
 }  // namespace avx512vbmi
 PATHLAB_AVX512_VBMI_END
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/hash.h"
 #include "core/simd_target.h"
 
 namespace pathlab {
@@ -20,17 +21,17 @@ PATHLAB_AVX512_VBMI_BEGIN
 namespace avx512vbmi {
 void digitPermutations(uint64_t first, uint64_t salt, uint32_t count, uint8_t* out) {
     constexpr __mmask8 kAll = 0xff;
+    using Lanes = uint64_t __attribute__((vector_size(64)));
     const __m512i table = _mm512_maskz_loadu_epi8(0xffffff, zsobol::kDigitPermutations);
     const __m512i lanes = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
     const __m512d inverse24 = _mm512_set1_pd(1.0 / 24);
     for (uint32_t n = 0; n < count; n += 8) {
         __m512i v = _mm512_xor_si512(_mm512_add_epi64(_mm512_set1_epi64(int64_t(first | n)), lanes),
                                      _mm512_set1_epi64(int64_t(salt)));
-        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 31));
-        v = _mm512_mullo_epi64(v, _mm512_set1_epi64(int64_t(0x7fb5d329728ea185ULL)));
-        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 27));
-        v = _mm512_mullo_epi64(v, _mm512_set1_epi64(int64_t(0x81dadef4bc2dd44dULL)));
-        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 33));
+        auto lanes = Lanes(v);
+        mixBitsMultiplySteps(lanes);
+        v = __m512i(lanes);
+        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 33));  // mixBits's last step
         const __m512i x = _mm512_maskz_srli_epi64(kAll, v, 24);
         const __m512d quotient = _mm512_maskz_roundscale_pd(
             kAll,
