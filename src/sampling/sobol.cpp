@@ -26,13 +26,13 @@ void digitPermutations(uint64_t first, uint64_t salt, uint32_t count, uint8_t* o
     const __m512i lanes = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
     const __m512d inverse24 = _mm512_set1_pd(1.0 / 24);
     for (uint32_t n = 0; n < count; n += 8) {
-        __m512i v = _mm512_xor_si512(_mm512_add_epi64(_mm512_set1_epi64(int64_t(first | n)), lanes),
-                                     _mm512_set1_epi64(int64_t(salt)));
-        auto lanes = Lanes(v);
-        mixBitsMultiplySteps(lanes);
-        v = __m512i(lanes);
-        v = _mm512_xor_si512(v, _mm512_maskz_srli_epi64(kAll, v, 33));  // mixBits's last step
-        const __m512i x = _mm512_maskz_srli_epi64(kAll, v, 24);
+        // mixBits(((first | n) + lane) ^ salt), its steps on 64-bit lanes.
+        auto hash =
+            Lanes(_mm512_xor_si512(_mm512_add_epi64(_mm512_set1_epi64(int64_t(first | n)), lanes),
+                                   _mm512_set1_epi64(int64_t(salt))));
+        mixBitsMultiplySteps(hash);
+        hash ^= hash >> 33;
+        const __m512i x = _mm512_maskz_srli_epi64(kAll, __m512i(hash), 24);
         const __m512d quotient = _mm512_maskz_roundscale_pd(
             kAll,
             _mm512_mul_pd(_mm512_add_pd(_mm512_maskz_cvtepu64_pd(kAll, x), _mm512_set1_pd(0.5)),
