@@ -1,6 +1,6 @@
 // Nanoseconds per sample for every sampler, drawn the way the renderer draws
-// them on the Cornell box (sampling/sampler_cost.h): a packet's camera samples,
-// then each path's vertex draws, for paths of depth 4 — so startPixelSample is
+// them on the Cornell box (sampling/sampler_cost.h): a batch's camera samples,
+// then its paths' vertex draws, for paths of depth 4 — so startPixelSample is
 // amortised over a typical path. Reported per drawn dimension, and separately
 // for 1D and 2D.
 #include <benchmark/benchmark.h>
@@ -19,10 +19,10 @@ void pathDimensions(benchmark::State& state, const std::string& name) {
     int64_t paths = 0;
     std::visit(
         [&](auto& s) {
-            PacketWalk walk{kSpp, kResolution};
+            BatchWalk walk{kSpp, kResolution};
             for (auto _ : state) {
                 benchmark::DoNotOptimize(
-                    drawPacketDimensions(s, walk.pixel, walk.index, walk.count(), kDepth));
+                    drawBatchDimensions(s, walk.pixel, walk.index, walk.count(), kDepth));
                 paths += walk.count();
                 walk.advance();
             }

@@ -208,6 +208,21 @@ TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithEverySampler) {
     }
 }
 
+TEST(DiffuseBatch, RendersTheScalarIntegratorsImageAcrossBatches) {
+    // More samples than one batch traces together (a full batch, then a
+    // partial one), and prefixes that end a batch early: the batches' live
+    // paths, packed into groups across camera packets, give the same image.
+    const RenderScene scene(cornellBoxScene());
+    for (const std::string sampler : {"independent", "sobol", "halton-owen", "standard"}) {
+        RenderSettings s;
+        s.sampler = sampler;
+        s.resolution = {6, 6};
+        s.samplesPerPixel = kBatchSamples + 11;
+        s.prefixSpp = {3, kBatchSamples / 2 + 1};
+        expectSameRender(scene, s);
+    }
+}
+
 TEST(DiffuseBatch, RendersTheScalarIntegratorsImageForEverySetting) {
     // Every kind of light; a partial last packet (13 spp); with and without
     // roulette; a short and a long path.

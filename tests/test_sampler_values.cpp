@@ -306,13 +306,15 @@ struct RecordingSampler {
     Vec2f getPixel2D() { return get2D(); }
 };
 
-TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
+TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxBatch) {
     // The sampler microbenchmark draws what the integrator draws at a diffuse
     // vertex with one light: the pixel (0, 1), then per vertex the light point
     // (+1, +2), the BSDF direction (+4, +5) and roulette (+6) from vertex 2 on.
     RecordingSampler s;
-    const int depth = 4, first = 8, count = 3;
-    drawPacketDimensions(s, {5, 6}, first, count, depth);
+    // Three groups of lanes: 8 + 8 + 3 paths.
+    const int depth = 4, first = 64, count = 19;
+    static_assert(count <= kBatchSamples);
+    drawBatchDimensions(s, {5, 6}, first, count, depth);
     std::multiset<std::pair<int, int>> expected;
     for (int k = 0; k < count; ++k) {
         expected.insert({first + k, 0}), expected.insert({first + k, 1});
@@ -324,14 +326,20 @@ TEST(SamplerCost, DrawsTheDimensionsOfACornellBoxPacket) {
     const std::multiset<std::pair<int, int>> drawn(s.drawn.begin(), s.drawn.end());
     EXPECT_EQ(drawn, expected);
     EXPECT_EQ(s.drawn.size(), size_t(count * dimensionsPerPath(depth)));
-    // The camera samples of the whole packet come first, as in the renderer.
+    // The camera samples of the whole batch come first, as in the renderer.
     for (int k = 0; k < 2 * count; ++k) EXPECT_LT(s.drawn[size_t(k)].second, 2);
-    // Then depth by depth over the packet's paths, as estimateRadianceBatch
-    // traces them.
-    for (size_t i = size_t(2 * count) + 1; i < s.drawn.size(); ++i)
-        EXPECT_LE(dims::depthOfDimension(s.drawn[i - 1].second),
-                  dims::depthOfDimension(s.drawn[i].second))
+    // Then depth by depth over the batch's paths, as estimateRadianceBatch
+    // traces them, and within a depth a group of kCameraPacketSamples paths
+    // after another.
+    for (size_t i = size_t(2 * count) + 1; i < s.drawn.size(); ++i) {
+        const int depthBefore = dims::depthOfDimension(s.drawn[i - 1].second);
+        const int depthNow = dims::depthOfDimension(s.drawn[i].second);
+        EXPECT_LE(depthBefore, depthNow) << "draw " << i;
+        if (depthBefore != depthNow) continue;
+        EXPECT_LE((s.drawn[i - 1].first - first) / kCameraPacketSamples,
+                  (s.drawn[i].first - first) / kCameraPacketSamples)
             << "draw " << i;
+    }
 }
 
 // drawLanes1D/2D of `lanes` against startPixelSample + get1D/get2D of

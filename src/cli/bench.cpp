@@ -65,22 +65,24 @@ double raysPerSecond(const RenderStats& st, double seconds) {
 
 // The cost model's single-threaded ns per dimension for `sampler` at the
 // bench's image size and spp (sampling/sampler_cost.h: paths of depth 4,
-// 25 000 packets).
+// 200 000 of them).
 double costModelNanoseconds(const std::string& sampler, const BenchOptions& o) {
-    return nanosecondsPerDimension(sampler, o.spp, {o.size, o.size}, 4, 25000);
+    const int batchSize = std::min(o.spp, kBatchSamples);
+    return nanosecondsPerDimension(sampler, o.spp, {o.size, o.size}, 4,
+                                   (200000 + batchSize - 1) / batchSize);
 }
 
 // The frame's rays replayed through Embree alone, in each query mode, with
-// the renderer's thread count. Recorded from one full camera packet per pixel
-// (kPacketWidth spp: the rays come in the renderer's packets, and their
-// distribution is that of any spp) over a quarter of the pixels, which keeps
-// the recording to about 32 bytes × 5 rays × 8 samples × size²/4.
+// the renderer's thread count. Recorded from one full batch per pixel
+// (kBatchSamples spp: the rays come in the renderer's packets, and their
+// distribution is that of any spp) over a 36th of the pixels, which keeps
+// the recording to about 32 bytes × 5 rays × 64 samples × size²/36.
 nlohmann::json rayLimit(RenderScene& scene, const BenchOptions& o, double rendererRaysPerSecond) {
     RayRecorder recorder;
     scene.setRayRecorder(&recorder);
     RenderSettings s = settingsFor(o, "independent", o.threads);
-    s.samplesPerPixel = kPacketWidth;
-    s.resolution = {std::max(1, o.size / 2), std::max(1, o.size / 2)};
+    s.samplesPerPixel = kBatchSamples;
+    s.resolution = {std::max(1, o.size / 6), std::max(1, o.size / 6)};
     render(scene, s);
     scene.setRayRecorder(nullptr);
     const std::vector<RecordedRay> rays = recorder.gather();

@@ -227,110 +227,137 @@ inline void setBatchLightSample(DiffuseBatchInput& in, int k,
     in.lightPdf[k] = ls->pdf;
 }
 
-// The paths of a camera packet, traced together where every surface is
-// Lambertian (RenderScene::batchesDiffusePaths): the same estimator as
-// estimateRadiance, bit for bit, but each bounce's arithmetic for all live
-// paths runs as one shadeDiffuseBatch, and its shadow rays and bounce rays are
-// each traced as one Embree packet. A sampler's values are pure functions of
-// (pixel, index, dimension, seed), so the draws may be made lane after lane.
-// On entry found[k] and si[k] hold camera ray k's hit; they are the paths'
-// working state, overwritten. L[k] receives path k's radiance.
+// The state of the paths estimateRadianceBatch traces together. Path k's
+// vertex at the current depth is in si[k] (found[k]: the ray that looked for
+// it hit); Lambertian scenes have no specular bounce, so only the camera
+// ray's emission is unweighted.
+struct BatchPaths {
+    Vec3f beta[kBatchSamples], dir[kBatchSamples], prevPoint[kBatchSamples],
+        prevNormal[kBatchSamples];
+    float prevBsdfPdf[kBatchSamples] = {};
+    bool alive[kBatchSamples] = {};
+    // A group's shading, reused: lanes past the live ones go to Embree too,
+    // masked, and hold what an earlier group left there.
+    DiffuseBatchInput in{};
+    DiffuseBatchOutput out{};
+};
+
+// One vertex of up to kBatchLanes live paths (lane[j]: the path in lane j):
+// their draws, one shadeDiffuseBatch, the shadow rays as one Embree packet,
+// Russian roulette, and the bounce rays as one packet, whose hits replace the
+// paths' vertices.
+template <Sampler S>
+void advanceBatchLanes(const RenderScene& scene, const int* lane, int live, int depth, S& sampler,
+                       Vec2i pixel, int firstIndex, const IntegratorSettings& settings,
+                       BatchPaths& paths, bool* found, SurfaceInteraction* si,
+                       PathCounters& counters, Vec3f* L) {
+    const LightSet& lights = scene.lights();
+    // One area light sampled by area: the kernel samples it; otherwise each
+    // lane's light sample is drawn here, one at a time.
+    const AreaLight* onlyLight = lights.onlyAreaLight();
+    int index[kBatchLanes];
+    for (int j = 0; j < live; ++j) index[j] = firstIndex + lane[j];
+    // The live paths' dimensions, one dimension for all of them at a time.
+    const int base = dims::bounceBase(depth);
+    float uChoice[kBatchLanes] = {};
+    Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
+    const bool choice = lights.choiceUsesSample();
+    drawVertexLanes(sampler, pixel, index, live, base, choice, uChoice, uLight, uDirection);
+    counters.dimensions += uint64_t(live) * (choice ? 5 : 4);
+    DiffuseBatchInput& in = paths.in;
+    DiffuseBatchOutput& out = paths.out;
+    for (int j = 0; j < live; ++j) {
+        const int k = lane[j];
+        setBatchLane(in, j, si[k], paths.dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],
+                     uDirection[j]);
+        if (!onlyLight)
+            setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));
+    }
+    shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
+
+    bool blocked[kBatchLanes];
+    scene.occludedLanes(
+        {out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax, out.shadow, live},
+        blocked);
+    // Russian roulette's numbers are drawn only for the paths it can end;
+    // the other paths' fate is settled here.
+    int continues[kBatchLanes] = {};
+    float q[kBatchLanes];
+    int playing[kBatchLanes], playingIndex[kBatchLanes], players = 0;
+    for (int j = 0; j < live; ++j) {
+        const int k = lane[j];
+        if (out.shadow[j]) {
+            ++counters.shadowRays;
+            if (!blocked[j])
+                L[k] += paths.beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
+        }
+        paths.alive[k] = out.bounce[j] != 0;
+        if (!paths.alive[k]) continue;
+        paths.beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
+        paths.prevBsdfPdf[k] = out.pdf[j];
+        paths.prevPoint[k] = si[k].p;
+        paths.prevNormal[k] = si[k].ns;
+        paths.dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
+        q[j] = terminationProbability(settings, depth, paths.beta[k]);
+        if (q[j] > 0) {
+            playing[players] = j, playingIndex[players++] = index[j];
+            continue;
+        }
+        paths.alive[k] = !isBlack(paths.beta[k]);
+        continues[j] = paths.alive[k];
+        counters.rays += uint64_t(paths.alive[k]);
+    }
+    if (players > 0) {
+        float u[kBatchLanes];
+        drawLanes1D(sampler, pixel, playingIndex, players, base + dims::kRoulette, u);
+        counters.dimensions += uint64_t(players);
+        for (int n = 0; n < players; ++n) {
+            const int j = playing[n], k = lane[j];
+            paths.beta[k] *= 1 / (1 - q[j]);
+            paths.alive[k] = u[n] >= q[j] && !isBlack(paths.beta[k]);
+            continues[j] = paths.alive[k];
+            counters.rays += uint64_t(paths.alive[k]);
+        }
+    }
+
+    scene.intersectLanes({out.ox, out.oy, out.oz, out.wx, out.wy, out.wz, nullptr, continues, live},
+                         lane, si, found);
+}
+
+// The paths of up to kBatchSamples consecutive samples of a pixel, traced
+// together where every surface is Lambertian (RenderScene::batchesDiffusePaths):
+// the same estimator as estimateRadiance, bit for bit, but depth by depth the
+// live paths are packed into groups of kBatchLanes — so that as paths end the
+// rest still fill whole packets — and each group's arithmetic runs as one
+// shadeDiffuseBatch, its shadow rays and bounce rays each as one Embree packet.
+// A sampler's values are pure functions of (pixel, index, dimension, seed), so
+// the draws may be made in any order. On entry found[k] and si[k] hold camera
+// ray k's hit; they are the paths' working state, overwritten. L[k] receives
+// path k's radiance.
 template <Sampler S>
 void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* found,
                            SurfaceInteraction* si, int count, S& sampler, Vec2i pixel,
                            int firstIndex, const IntegratorSettings& settings,
                            PathCounters& counters, Vec3f* L) {
-    static_assert(kPacketWidth == kBatchLanes, "a camera packet fills one batch");
+    static_assert(kPacketWidth == kBatchLanes, "a packet's rays are one batch's lanes");
     const LightSet& lights = scene.lights();
-    // One area light sampled by area: the kernel samples it; otherwise each
-    // lane's light sample is drawn here, one at a time.
-    const AreaLight* onlyLight = lights.onlyAreaLight();
-    // Path k's state. Its vertex at the current depth is in si[k] (found[k]:
-    // the ray that looked for it hit); Lambertian scenes have no specular
-    // bounce, so only the camera ray's emission is unweighted.
-    Vec3f beta[kBatchLanes], dir[kBatchLanes], prevPoint[kBatchLanes], prevNormal[kBatchLanes];
-    float prevBsdfPdf[kBatchLanes] = {};
-    bool alive[kBatchLanes] = {};
+    BatchPaths paths;
     for (int k = 0; k < count; ++k)
-        L[k] = Vec3f(0.0f), beta[k] = Vec3f(1.0f), dir[k] = dirs[k], alive[k] = true;
-    DiffuseBatchInput in{};
-    DiffuseBatchOutput out{};  // lanes past the live ones go to Embree too, masked
+        L[k] = Vec3f(0.0f), paths.beta[k] = Vec3f(1.0f), paths.dir[k] = dirs[k],
+        paths.alive[k] = true;
     for (int depth = 0;; ++depth) {
-        // The live paths' vertices go to consecutive slots, so that a
-        // packet whose paths have mostly ended shades one half, not two.
-        int lane[kBatchLanes], index[kBatchLanes], live = 0;
+        int lane[kBatchSamples], live = 0;
         for (int k = 0; k < count; ++k) {
-            if (!alive[k]) continue;
-            addEmission(lights, found[k], si[k], dir[k], beta[k], depth == 0, prevBsdfPdf[k],
-                        prevPoint[k], prevNormal[k], L[k]);
-            alive[k] = found[k] && depth != settings.maxDepth;
-            if (alive[k]) lane[live] = k, index[live++] = firstIndex + k;
+            if (!paths.alive[k]) continue;
+            addEmission(lights, found[k], si[k], paths.dir[k], paths.beta[k], depth == 0,
+                        paths.prevBsdfPdf[k], paths.prevPoint[k], paths.prevNormal[k], L[k]);
+            paths.alive[k] = found[k] && depth != settings.maxDepth;
+            if (paths.alive[k]) lane[live++] = k;
         }
         if (live == 0) return;
-        // The live paths' dimensions, one dimension for all of them at a time.
-        const int base = dims::bounceBase(depth);
-        float uChoice[kBatchLanes] = {};
-        Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
-        const bool choice = lights.choiceUsesSample();
-        drawVertexLanes(sampler, pixel, index, live, base, choice, uChoice, uLight, uDirection);
-        counters.dimensions += uint64_t(live) * (choice ? 5 : 4);
-        for (int j = 0; j < live; ++j) {
-            const int k = lane[j];
-            setBatchLane(in, j, si[k], dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],
-                         uDirection[j]);
-            if (!onlyLight)
-                setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));
-        }
-        shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
-
-        bool blocked[kBatchLanes];
-        scene.occludedLanes({out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax,
-                             out.shadow, live},
-                            blocked);
-        // Russian roulette's numbers are drawn only for the paths it can end;
-        // the other paths' fate is settled here.
-        int continues[kBatchLanes] = {};
-        float q[kBatchLanes];
-        int playing[kBatchLanes], playingIndex[kBatchLanes], players = 0;
-        for (int j = 0; j < live; ++j) {
-            const int k = lane[j];
-            if (out.shadow[j]) {
-                ++counters.shadowRays;
-                if (!blocked[j])
-                    L[k] += beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
-            }
-            alive[k] = out.bounce[j] != 0;
-            if (!alive[k]) continue;
-            beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
-            prevBsdfPdf[k] = out.pdf[j];
-            prevPoint[k] = si[k].p;
-            prevNormal[k] = si[k].ns;
-            dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
-            q[j] = terminationProbability(settings, depth, beta[k]);
-            if (q[j] > 0) {
-                playing[players] = j, playingIndex[players++] = firstIndex + k;
-                continue;
-            }
-            alive[k] = !isBlack(beta[k]);
-            continues[j] = alive[k];
-            counters.rays += uint64_t(alive[k]);
-        }
-        if (players > 0) {
-            float u[kBatchLanes];
-            drawLanes1D(sampler, pixel, playingIndex, players, base + dims::kRoulette, u);
-            counters.dimensions += uint64_t(players);
-            for (int n = 0; n < players; ++n) {
-                const int j = playing[n], k = lane[j];
-                beta[k] *= 1 / (1 - q[j]);
-                alive[k] = u[n] >= q[j] && !isBlack(beta[k]);
-                continues[j] = alive[k];
-                counters.rays += uint64_t(alive[k]);
-            }
-        }
-
-        scene.intersectLanes(
-            {out.ox, out.oy, out.oz, out.wx, out.wy, out.wz, nullptr, continues, live}, lane, si,
-            found);
+        for (int j0 = 0; j0 < live; j0 += kBatchLanes)
+            advanceBatchLanes(scene, lane + j0, std::min(kBatchLanes, live - j0), depth, sampler,
+                              pixel, firstIndex, settings, paths, found, si, counters, L);
     }
 }
 

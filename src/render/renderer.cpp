@@ -60,6 +60,21 @@ void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, Image& i
 
 using Clock = std::chrono::steady_clock;
 
+// Samples first … first + count − 1 of a pixel (count ≤ kPacketWidth): their
+// positions in the pixel, and their camera rays traced as one packet.
+template <Sampler S>
+void traceCameraPacket(const RenderScene& scene, const PinholeCamera& camera, S& sampler,
+                       Vec2i pixel, int first, int count, Vec3f* dirs, SurfaceInteraction* si,
+                       bool* found) {
+    int indices[kPacketWidth];
+    for (int k = 0; k < count; ++k) indices[k] = first + k;
+    Vec2f u[kPacketWidth];
+    drawPixelLanes(sampler, pixel, indices, count, u);
+    for (int k = 0; k < count; ++k)
+        dirs[k] = camera.direction(float(pixel.x) + u[k].x, float(pixel.y) + u[k].y);
+    scene.intersectPacket(camera.eye(), dirs, count, si, found);
+}
+
 template <Sampler S>
 void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampler, Vec2i pixel,
                  const IntegratorSettings& integrator, const Checkpoints& checkpoints,
@@ -69,22 +84,21 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
     double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
     uint64_t nonFinite = 0;  // this pixel's, so far
     size_t next = 0;         // the next checkpoint
-    // The pixel's camera rays are nearly parallel: trace them as packets.
-    for (int i0 = 0; i0 < spp; i0 += kPacketWidth) {
-        const int count = std::min(kPacketWidth, spp - i0);
-        int indices[kPacketWidth];
-        for (int k = 0; k < count; ++k) indices[k] = i0 + k;
-        Vec2f u[kPacketWidth];
-        drawPixelLanes(sampler, pixel, indices, count, u);
-        Vec3f dirs[kPacketWidth];
-        for (int k = 0; k < count; ++k)
-            dirs[k] = camera.direction(float(pixel.x) + u[k].x, float(pixel.y) + u[k].y);
-        SurfaceInteraction first[kPacketWidth];
-        bool found[kPacketWidth];
-        scene.intersectPacket(camera.eye(), dirs, count, first, found);
+    // The pixel's paths go kBatchSamples at a time, a batch ending at each
+    // checkpoint so that its time is the time of its samples; their camera
+    // rays are nearly parallel and are traced as packets.
+    for (int i0 = 0, count; i0 < spp; i0 += count) {
+        count = std::min(kBatchSamples, checkpoints.spp[next] - i0);
+        Vec3f dirs[kBatchSamples];
+        SurfaceInteraction first[kBatchSamples];
+        bool found[kBatchSamples];
+        for (int p0 = 0; p0 < count; p0 += kPacketWidth)
+            traceCameraPacket(scene, camera, sampler, pixel, i0 + p0,
+                              std::min(kPacketWidth, count - p0), dirs + p0, first + p0,
+                              found + p0);
         result.counters.rays += uint64_t(count);
         result.counters.dimensions += 2 * uint64_t(count);
-        Vec3f radiance[kPacketWidth];
+        Vec3f radiance[kBatchSamples];
         if (integrator.batchDiffusePaths && scene.batchesDiffusePaths())
             estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
                                   result.counters, radiance);

@@ -75,14 +75,14 @@ class PcgSampleCursor {
         return t;
     }();
 
-    // The block starts of the last kCameraPacketSamples samples: the renderer
-    // traces a camera packet's paths together, a bounce of each in turn, so
-    // the cursor returns to the packet's first sample at every bounce.
+    // The block starts of the last kBatchSamples samples: the renderer traces
+    // a batch's paths together, a bounce of each in turn, so the cursor
+    // returns to the batch's first sample at every bounce.
     struct RecentSample {
         int index = -1;
         Pcg32 start;
     };
-    std::array<RecentSample, kCameraPacketSamples> recent_;
+    std::array<RecentSample, kBatchSamples> recent_;
     uint64_t key_ = 0;
     bool started_ = false;
     int index_ = -1;

@@ -48,12 +48,18 @@ constexpr int depthOfDimension(int dim) {
 }
 }  // namespace dims
 
-// The draw order across samples: the renderer draws the pixel dimensions of
-// this many consecutive samples of a pixel first (their camera rays are traced
-// as one packet), then each of their paths in turn. Samplers that keep
-// per-sample state keep it for this many samples; the cost model draws in
-// this order.
+// The lanes of one draw: the renderer traces a camera packet of this many
+// consecutive samples of a pixel, and draws a path vertex's dimensions for up
+// to this many paths at once.
 inline constexpr int kCameraPacketSamples = 8;
+// The draw order across samples: the renderer traces the paths of this many
+// consecutive samples of a pixel together — their pixel dimensions first, a
+// camera packet at a time, then depth by depth, the live paths in groups of
+// kCameraPacketSamples — so that as paths end, the live ones still fill whole
+// groups. Samplers that keep per-sample state keep it for this many samples;
+// the cost model draws in this order.
+inline constexpr int kBatchSamples = 64;
+static_assert(kBatchSamples % kCameraPacketSamples == 0);
 
 // What every sampler is constructed from.
 struct SamplerConfig {

@@ -5,17 +5,17 @@
 namespace pathlab {
 
 double nanosecondsPerDimension(const std::string& sampler, int spp, Vec2i resolution, int depth,
-                               int packets) {
+                               int batches) {
     AnySampler any = makeSampler(sampler, SamplerConfig{spp, 1, resolution});
     volatile float sink = 0;
     int64_t paths = 0;
     const auto start = std::chrono::steady_clock::now();
     std::visit(
         [&](auto& s) {
-            PacketWalk walk{spp, resolution};
+            BatchWalk walk{spp, resolution};
             float acc = 0;
-            for (int p = 0; p < packets; ++p, walk.advance()) {
-                acc += drawPacketDimensions(s, walk.pixel, walk.index, walk.count(), depth);
+            for (int b = 0; b < batches; ++b, walk.advance()) {
+                acc += drawBatchDimensions(s, walk.pixel, walk.index, walk.count(), depth);
                 paths += walk.count();
             }
             sink = acc;

@@ -1,11 +1,12 @@
 // What a sampler costs per dimension when drawn the way the renderer draws on
-// the Cornell box: the camera rays of a packet of kCameraPacketSamples samples
-// first (startPixelSample at dimension 0, getPixel2D each), then the packet's
+// the Cornell box: the camera rays of a batch of up to kBatchSamples samples
+// first (startPixelSample at dimension 0, getPixel2D each), then the batch's
 // paths together, as estimateRadianceBatch traces them: at each vertex depth,
-// the paths' light points (dims::kLightPoint) and BSDF directions
-// (dims::kBsdfDirection) through drawVertexLanes, then — from the third
-// vertex on — their Russian roulette (dims::kRoulette, pbrt-v4's default)
-// through drawLanes1D.
+// kCameraPacketSamples paths at a time, the paths' light points
+// (dims::kLightPoint) and BSDF directions (dims::kBsdfDirection) through
+// drawVertexLanes, then — from the third vertex on — their Russian roulette
+// (dims::kRoulette, pbrt-v4's default) through drawLanes1D. (Every modelled
+// path lives to the last vertex, so every group is full.)
 // Shared by the Google Benchmark microbenchmarks and `pathlab bench --samplers`,
 // which multiplies it by the dimensions a frame draws.
 #pragma once
@@ -24,42 +25,45 @@ constexpr int dimensionsPerPath(int depth) {
     return 2 + 4 * depth + std::max(0, depth - kCostRouletteDepth);
 }
 
-// Samples firstIndex … firstIndex + count − 1 of `pixel`, each a path of
-// `depth` vertices; returns the sum of the values so the work cannot be
-// optimised away.
+// Samples firstIndex … firstIndex + count − 1 of `pixel` (count ≤
+// kBatchSamples), each a path of `depth` vertices; returns the sum of the
+// values so the work cannot be optimised away.
 template <typename S>
-float drawPacketDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
+float drawBatchDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
     float acc = 0;
     for (int k = 0; k < count; ++k) {
         s.startPixelSample(pixel, firstIndex + k, dims::kPixel);
         const Vec2f p = s.getPixel2D();
         acc += p.x + p.y;
     }
-    int indices[kCameraPacketSamples];
-    for (int k = 0; k < count; ++k) indices[k] = firstIndex + k;
     for (int d = 0; d < depth; ++d) {
         const int base = dims::bounceBase(d);
-        float choice[kCameraPacketSamples];
-        Vec2f light[kCameraPacketSamples], dir[kCameraPacketSamples];
-        drawVertexLanes(s, pixel, indices, count, base, false, choice, light, dir);
-        for (int k = 0; k < count; ++k) acc += light[k].x + light[k].y + dir[k].x + dir[k].y;
-        if (d < kCostRouletteDepth) continue;
-        float roulette[kCameraPacketSamples];
-        drawLanes1D(s, pixel, indices, count, base + dims::kRoulette, roulette);
-        for (int k = 0; k < count; ++k) acc += roulette[k];
+        for (int k0 = 0; k0 < count; k0 += kCameraPacketSamples) {
+            const int lanes = std::min(kCameraPacketSamples, count - k0);
+            int indices[kCameraPacketSamples];
+            for (int j = 0; j < lanes; ++j) indices[j] = firstIndex + k0 + j;
+            float choice[kCameraPacketSamples];
+            Vec2f light[kCameraPacketSamples], dir[kCameraPacketSamples];
+            drawVertexLanes(s, pixel, indices, lanes, base, false, choice, light, dir);
+            for (int j = 0; j < lanes; ++j) acc += light[j].x + light[j].y + dir[j].x + dir[j].y;
+            if (d < kCostRouletteDepth) continue;
+            float roulette[kCameraPacketSamples];
+            drawLanes1D(s, pixel, indices, lanes, base + dims::kRoulette, roulette);
+            for (int j = 0; j < lanes; ++j) acc += roulette[j];
+        }
     }
     return acc;
 }
 
-// A walk over an image's samples packet by packet, pixel after pixel (row by
-// row, back to the first pixel after the last): where the next packet starts
-// and how many samples it has (kCameraPacketSamples, or the pixel's rest).
-struct PacketWalk {
+// A walk over an image's samples batch by batch, pixel after pixel (row by
+// row, back to the first pixel after the last): where the next batch starts
+// and how many samples it has (kBatchSamples, or the pixel's rest).
+struct BatchWalk {
     int spp;
     Vec2i resolution;
     Vec2i pixel{0, 0};
     int index = 0;
-    int count() const { return std::min(kCameraPacketSamples, spp - index); }
+    int count() const { return std::min(kBatchSamples, spp - index); }
     void advance() {
         if ((index += count()) < spp) return;
         index = 0;
@@ -67,9 +71,10 @@ struct PacketWalk {
     }
 };
 
-// Single-threaded nanoseconds per dimension over `packets` packets (PacketWalk)
-// of paths of `depth` vertices, in a `resolution` image with `spp` samples each.
+// Single-threaded nanoseconds per dimension over `batches` batches
+// (BatchWalk) of paths of `depth` vertices, in a `resolution` image with `spp`
+// samples each.
 double nanosecondsPerDimension(const std::string& sampler, int spp, Vec2i resolution, int depth,
-                               int packets);
+                               int batches);
 
 }  // namespace pathlab

@@ -72,10 +72,10 @@ class GlobalSobolSamplerT {
     int samplesPerPixel() const { return spp_; }
     void startPixelSample(Vec2i p, int index, int dim) {
         // A path restarts at every vertex with the same pixel sample, and the
-        // renderer first draws the camera rays of kRecentIndices samples, then
-        // their paths: the image mapping is inverted once per pixel sample, and
-        // the last kRecentIndices results are kept (slot index mod
-        // kRecentIndices).
+        // renderer first draws the camera rays of kRecentIndices samples (a
+        // batch), then their paths: the image mapping is inverted once per
+        // pixel sample, and the last kRecentIndices results are kept (slot
+        // index mod kRecentIndices).
         if (p.x != pixel_.x || p.y != pixel_.y) pixel_ = p, index_ = -1, recentIndex_.fill(-1);
         if (index != index_) {
             index_ = index;
@@ -135,7 +135,7 @@ class GlobalSobolSamplerT {
     const SobolNibbleTable* nibbleTables_;
     std::array<uint32_t, kSobolNibbleDimensions> shifts_{};  // sobol-xor's, by dimension
     std::shared_ptr<const SobolImageMapping> mapping_;
-    static constexpr size_t kRecentIndices = kCameraPacketSamples;
+    static constexpr size_t kRecentIndices = kBatchSamples;
     Vec2i pixel_{-1, -1};
     int index_ = -1;
     uint64_t sobolIndex_ = 0;

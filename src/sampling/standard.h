@@ -53,8 +53,8 @@ class StandardSampler {
 
   private:
     // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly. The
-    // last kCameraPacketSamples samples' states are kept: the renderer
-    // returns to each sample of a camera packet at every bounce.
+    // last kBatchSamples samples' states are kept: the renderer returns to
+    // each sample of a batch at every bounce.
     uint64_t seedState(Vec2i p, int index) {
         RecentSample& recent = recent_[size_t(index) % recent_.size()];
         if (recent.index != index || recent.pixel.x != p.x || recent.pixel.y != p.y)
@@ -66,7 +66,7 @@ class StandardSampler {
         int index = -1;
         uint64_t state = 0;
     };
-    std::array<RecentSample, kCameraPacketSamples> recent_;
+    std::array<RecentSample, kBatchSamples> recent_;
 
     static constexpr uint64_t kModulus = 2147483647, kMultiplier = 16807;
     // 16807^n mod (2^31 − 1): tabulated for the first 1024 dimensions (4 KB,
