@@ -21,8 +21,9 @@ namespace pathlab {
 namespace {
 
 constexpr int kTileSize = 16;
-// The samplers size their per-sample caches by the draw order this renderer
-// follows: a packet's camera samples, then its paths.
+// The samplers follow this renderer's draw order (sampling/sampler.h): a
+// camera packet's positions are one lane draw of kCameraPacketSamples, and a
+// batch of kBatchSamples is whole camera packets.
 static_assert(kPacketWidth == kCameraPacketSamples);
 
 struct Tile {
