@@ -101,10 +101,15 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint64_t seed_) : seed(seed_) {
 }
 
 void HaltonDigitPermutations::addByteTables() {
+    // The pair tables' digit positions: floor(digits / 2) tables of b² entries.
+    auto pairEntries = [](const HaltonDimension& t) {
+        return t.base <= uint32_t(kMaxBytePairBase) ? size_t(t.digits / 2) * t.base * t.base : 0;
+    };
     size_t total = 0;  // sized first: dimensions point into the vector
     for (const HaltonDimension& t : dimensions)
         if (t.base <= uint32_t(kMaxByteTableBase))
-            total += (t.base <= uint32_t(kMaxWrapFreeBase) ? 3 : 2) * size_t(t.base);
+            total += (t.base <= uint32_t(kMaxWrapFreeBase) ? 3 : 2) * size_t(t.base) +
+                     size_t(t.digits) * t.base + pairEntries(t);
     byteTables.resize(total);
     uint8_t* next = byteTables.data();
     // from[i mod size] for i < count.
@@ -118,6 +123,9 @@ void HaltonDigitPermutations::addByteTables() {
         const bool wrapFree = t.base <= uint32_t(kMaxWrapFreeBase);
         t.permutationBytes = copy(t.permutation, t.base, (wrapFree ? 2 : 1) * size_t(t.base));
         t.childRotationBytes = copy(t.rotations + 1, t.base, t.base);
+        const size_t digitEntries = size_t(t.digits) * t.base;
+        t.scrambledDigitBytes = copy(t.scrambledDigits, digitEntries, digitEntries);
+        if (const size_t pairs = pairEntries(t)) t.pairBytes = copy(t.pairs, pairs, pairs);
     }
 }
 

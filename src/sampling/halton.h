@@ -103,6 +103,12 @@ struct HaltonDimension {
     // looks its value up without first wrapping the sum below b.
     const uint8_t* permutationBytes = nullptr;
     const uint8_t* childRotationBytes = nullptr;
+    // RandomDigit, bases up to kMaxByteTableBase: `scrambledDigits` as bytes,
+    // and up to kMaxBytePairBase (b² ≤ 256) `pairs` too, which the AVX-512
+    // VBMI lane draws hold in registers per digit position instead of
+    // gathering them; null for larger bases.
+    const uint8_t* scrambledDigitBytes = nullptr;
+    const uint8_t* pairBytes = nullptr;
 };
 
 // The lane draws' arithmetic (halton_lanes.cpp): out[j] = randomDigitScrambled
@@ -132,6 +138,8 @@ struct HaltonDigitPermutations {
     static constexpr int kMaxByteTableBase = 256;
     // Doubled permutations stop here: 2b entries in two registers.
     static constexpr int kMaxWrapFreeBase = 64;
+    // Byte pair tables stop here: 13² = 169 entries in four registers.
+    static constexpr int kMaxBytePairBase = 16;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;

@@ -17,7 +17,8 @@
 // Processors without AVX2 run the scalar loops lane by lane; those with
 // AVX-512DQ and VL run the AVX2 code with their 64-bit lane multiply, and
 // those with AVX-512BW and VBMI too look up Owen's permutations and child
-// rotations with byte permutes instead of gathers.
+// rotations, and the random-digit scramble's digits and small pairs of
+// digits (two registers of lanes), with byte permutes instead of gathers.
 #include <immintrin.h>
 
 #include "core/simd_target.h"
