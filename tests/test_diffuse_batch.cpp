@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
+#include "scene/loader.h"
 
 namespace pathlab {
 namespace {
@@ -162,7 +163,7 @@ TEST(DiffuseBatch, MatchesTheScalarVertexBitForBit) {
     // kind of light, every number of live lanes.
     for (BatchIsa isa : {BatchIsa::Best, BatchIsa::Sse})
         for (const RenderScene& scene : lightVariants()) {
-            ASSERT_TRUE(scene.batchesDiffusePaths());
+            ASSERT_TRUE(scene.allLambertian());
             for (int round = 0; round < 500; ++round)
                 compareBatch(scene, isa, 1 + round % kBatchLanes, random, outcomes);
         }
@@ -176,7 +177,7 @@ TEST(DiffuseBatch, MatchesTheScalarVertexBitForBit) {
 
 std::vector<float> renderImage(const RenderScene& scene, RenderSettings s, bool batch,
                                RenderStats* stats) {
-    s.batchDiffusePaths = batch;
+    s.batchPaths = batch;
     const RenderOutput out = render(scene, s);
     *stats = out.stats;
     std::vector<float> pixels = out.image.rgb;
@@ -260,20 +261,88 @@ TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithTexturesAndSmoothNormals)
         }
     }
     const RenderScene scene(desc);
-    ASSERT_TRUE(scene.batchesDiffusePaths());
+    ASSERT_TRUE(scene.allLambertian());
     RenderSettings s;
     s.resolution = {24, 24};
     s.samplesPerPixel = 16;
     expectSameRender(scene, s);
 }
 
-TEST(DiffuseBatch, OnlyLambertianScenesAreBatched) {
-    EXPECT_TRUE(RenderScene(cornellBoxScene()).batchesDiffusePaths());
+TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithSpheres) {
+    SceneDescription desc = cornellBoxScene();
+    desc.spheres.push_back({{278, 120, 250}, 90, 0});
+    desc.spheres.push_back({{150, 300, 300}, 60, 1});
+    const RenderScene scene(desc);
+    RenderSettings s;
+    s.resolution = {16, 16};
+    s.samplesPerPixel = 16;
+    expectSameRender(scene, s);
+}
+
+TEST(DiffuseBatch, RendersTheScalarIntegratorsImageOfGlassAndMetal) {
+    // The shipped scene: glass, mirror and rough-metal spheres and a metal
+    // pillar in the Cornell box's Lambertian walls.
+    const RenderScene scene(
+        loadScene(std::string(PATHLAB_SOURCE_DIR) + "/scenes/glass-and-metal.json"));
+    RenderSettings s;
+    s.resolution = {24, 24};
+    s.samplesPerPixel = 16;
+    expectSameRender(scene, s);
+}
+
+TEST(DiffuseBatch, KnowsWhichMaterialsAreLambertian) {
+    EXPECT_TRUE(RenderScene(cornellBoxScene()).allLambertian());
     for (MaterialType type :
          {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor}) {
         SceneDescription desc = cornellBoxScene();
         desc.materials[0].type = type;
-        EXPECT_FALSE(RenderScene(desc).batchesDiffusePaths());
+        const RenderScene scene(desc);
+        EXPECT_FALSE(scene.allLambertian());
+        EXPECT_FALSE(scene.isLambertian(0));
+        EXPECT_TRUE(scene.isLambertian(1));
+    }
+}
+
+// The Cornell box with its first material (white: floor, ceiling, back wall
+// and both blocks) and then its second made `type`.
+std::vector<RenderScene> specularVariants() {
+    std::vector<RenderScene> scenes;
+    for (MaterialType type :
+         {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
+        for (int m : {0, 1}) {
+            SceneDescription desc = cornellBoxScene();
+            desc.materials[size_t(m)].type = type;  // the default index, η, k and roughness
+            scenes.emplace_back(desc);
+        }
+    return scenes;
+}
+
+TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithSpecularSurfaces) {
+    // Mirror, glass and rough metal beside Lambertian surfaces: a group's
+    // Lambertian vertices go through the kernel and the others are shaded one
+    // at a time, their rays in the same packets; emission after a specular
+    // bounce is unweighted. Every setting, and more samples than a batch.
+    for (const RenderScene& scene : specularVariants()) {
+        ASSERT_FALSE(scene.allLambertian());
+        for (bool roulette : {false, true})
+            for (int depth : {1, 3, 20}) {
+                RenderSettings s;
+                s.resolution = {10, 10};
+                s.samplesPerPixel = 13;
+                s.russianRoulette = roulette;
+                s.maxDepth = depth;
+                expectSameRender(scene, s);
+            }
+    }
+    const std::vector<RenderScene> variants = specularVariants();
+    const RenderScene& scene = variants[2];  // glass floor, walls and blocks
+    for (const std::string sampler : {"sobol", "halton-owen", "standard"}) {
+        RenderSettings s;
+        s.sampler = sampler;
+        s.resolution = {6, 6};
+        s.samplesPerPixel = kBatchSamples + 11;
+        s.prefixSpp = {3, kBatchSamples / 2 + 1};
+        expectSameRender(scene, s);
     }
 }
 

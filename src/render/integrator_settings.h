@@ -15,10 +15,10 @@ struct IntegratorSettings {
     // Roulette may end a path only after its first `rouletteDepth` bounces: it
     // first decides when continuing from vertex `rouletteDepth` (0-based).
     int rouletteDepth = kDefaultRouletteDepth;
-    // Trace a camera packet's paths together where the scene allows it
-    // (RenderScene::batchesDiffusePaths): the same image, bit for bit, in less
-    // time. Off only to compare the two.
-    bool batchDiffusePaths = true;
+    // Trace a batch of a pixel's paths together, depth by depth
+    // (estimateRadianceBatch): the same image, bit for bit, in less time. Off
+    // only to compare the two.
+    bool batchPaths = true;
 };
 
 }  // namespace pathlab

@@ -159,7 +159,8 @@ inline void addEmission(const LightSet& lights, bool found, const SurfaceInterac
 // The radiance arriving along a path whose first segment (origin → first
 // surface, or escape when !found) has already been traced: the camera rays of
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
-// here one at a time.
+// here one at a time. (The renderer traces batches, estimateRadianceBatch;
+// this is the reference it is tested against.)
 template <Sampler S>
 Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
                        SurfaceInteraction si, S& sampler, Vec2i pixel, int sampleIndex,
@@ -229,51 +230,117 @@ inline void setBatchLightSample(DiffuseBatchInput& in, int k,
 
 // The state of the paths estimateRadianceBatch traces together. Path k's
 // vertex at the current depth is in si[k] (found[k]: the ray that looked for
-// it hit); Lambertian scenes have no specular bounce, so only the camera
-// ray's emission is unweighted.
+// it hit); specularBounce[k]: the bounce to it was specular, so its emission
+// is unweighted, as the camera ray's.
 struct BatchPaths {
     Vec3f beta[kBatchSamples], dir[kBatchSamples], prevPoint[kBatchSamples],
         prevNormal[kBatchSamples];
     float prevBsdfPdf[kBatchSamples] = {};
     bool alive[kBatchSamples] = {};
+    bool specularBounce[kBatchSamples] = {};
     // A group's shading, reused: lanes past the live ones go to Embree too,
     // masked, and hold what an earlier group left there.
     DiffuseBatchInput in{};
     DiffuseBatchOutput out{};
 };
 
-// One vertex of up to kBatchLanes live paths (lane[j]: the path in lane j):
-// their draws, one shadeDiffuseBatch, the shadow rays as one Embree packet,
-// Russian roulette, and the bounce rays as one packet, whose hits replace the
+// A vertex that is not Lambertian, shaded on its own into lane j of a
+// group's output, as estimateRadiance's loop shades it: its own draws,
+// next-event estimation unless the BSDF is specular, and the BSDF sample.
+// Returns whether the bounce is specular.
+template <Sampler S>
+bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampleIndex, int depth,
+                    const SurfaceInteraction& si, Vec3f dir, int j, DiffuseBatchOutput& out,
+                    PathCounters& counters) {
+    const LightSet& lights = scene.lights();
+    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
+    const Bsdf bsdf = scene.bsdfAt(si);
+    const Frame frame(si.ns);
+    const Vec3f wo = frame.toLocal(-dir);
+    out.shadow[j] = 0;
+    if (!bsdf.isSpecular()) {
+        const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
+        const Vec2f uLight = draws.get2D(dims::kLightPoint);
+        if (const auto d = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight)) {
+            out.shadow[j] = 1;
+            out.sox[j] = d->origin.x, out.soy[j] = d->origin.y, out.soz[j] = d->origin.z;
+            out.sdx[j] = d->toLight.x, out.sdy[j] = d->toLight.y, out.sdz[j] = d->toLight.z;
+            out.shadowTMax[j] = d->tMax;
+            const Vec3f c = d->contribution;
+            out.directR[j] = c.x, out.directG[j] = c.y, out.directB[j] = c.z;
+        }
+    }
+    const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
+    const Vec2f uDirection =
+        bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
+    const auto bs = bsdf.sample(wo, uLobe, uDirection);
+    out.bounce[j] = bs.has_value();
+    if (!bs) return false;
+    const Vec3f wi = frame.toWorld(bs->wi), weight = bs->weight();
+    const Vec3f origin = scene.offsetOrigin(si, wi);
+    out.ox[j] = origin.x, out.oy[j] = origin.y, out.oz[j] = origin.z;
+    out.wx[j] = wi.x, out.wy[j] = wi.y, out.wz[j] = wi.z;
+    out.weightR[j] = weight.x, out.weightG[j] = weight.y, out.weightB[j] = weight.z;
+    out.pdf[j] = bs->pdf;
+    return bs->specular;
+}
+
+// A group's Lambertian vertices in its first lanes, the others after them;
+// returns how many are Lambertian.
+inline int lambertianFirst(const RenderScene& scene, const SurfaceInteraction* si, const int* paths,
+                           int live, int* lane) {
+    int lambertian = 0;
+    if (scene.allLambertian()) {
+        for (int j = 0; j < live; ++j) lane[j] = paths[j];
+        return live;
+    }
+    for (int j = 0; j < live; ++j)
+        if (scene.isLambertian(si[paths[j]].material)) lane[lambertian++] = paths[j];
+    for (int j = 0, other = lambertian; j < live; ++j)
+        if (!scene.isLambertian(si[paths[j]].material)) lane[other++] = paths[j];
+    return lambertian;
+}
+
+// One vertex of up to kBatchLanes live paths (groupPaths[j]): the Lambertian
+// ones' draws and one shadeDiffuseBatch, the others shaded one at a time
+// (shadeLaneAlone), then the group's shadow rays as one Embree packet,
+// Russian roulette, and its bounce rays as one packet, whose hits replace the
 // paths' vertices.
 template <Sampler S>
-void advanceBatchLanes(const RenderScene& scene, const int* lane, int live, int depth, S& sampler,
-                       Vec2i pixel, int firstIndex, const IntegratorSettings& settings,
+void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live, int depth,
+                       S& sampler, Vec2i pixel, int firstIndex, const IntegratorSettings& settings,
                        BatchPaths& paths, bool* found, SurfaceInteraction* si,
                        PathCounters& counters, Vec3f* L) {
     const LightSet& lights = scene.lights();
     // One area light sampled by area: the kernel samples it; otherwise each
     // lane's light sample is drawn here, one at a time.
     const AreaLight* onlyLight = lights.onlyAreaLight();
-    int index[kBatchLanes];
+    int lane[kBatchLanes], index[kBatchLanes];
+    const int lambertian = lambertianFirst(scene, si, groupPaths, live, lane);
     for (int j = 0; j < live; ++j) index[j] = firstIndex + lane[j];
-    // The live paths' dimensions, one dimension for all of them at a time.
+    // The Lambertian paths' dimensions, one dimension for all of them at a time.
     const int base = dims::bounceBase(depth);
     float uChoice[kBatchLanes] = {};
     Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
     const bool choice = lights.choiceUsesSample();
-    drawVertexLanes(sampler, pixel, index, live, base, choice, uChoice, uLight, uDirection);
-    counters.dimensions += uint64_t(live) * (choice ? 5 : 4);
+    drawVertexLanes(sampler, pixel, index, lambertian, base, choice, uChoice, uLight, uDirection);
+    counters.dimensions += uint64_t(lambertian) * (choice ? 5 : 4);
     DiffuseBatchInput& in = paths.in;
     DiffuseBatchOutput& out = paths.out;
-    for (int j = 0; j < live; ++j) {
+    for (int j = 0; j < lambertian; ++j) {
         const int k = lane[j];
         setBatchLane(in, j, si[k], paths.dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],
                      uDirection[j]);
         if (!onlyLight)
             setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));
     }
-    shadeDiffuseBatch(onlyLight, scene.epsilon(), in, live, out);
+    if (lambertian > 0) shadeDiffuseBatch(onlyLight, scene.epsilon(), in, lambertian, out);
+    for (int j = 0; j < live; ++j) {
+        const int k = lane[j];
+        paths.specularBounce[k] =
+            j >= lambertian && shadeLaneAlone(scene, sampler, pixel, index[j], depth, si[k],
+                                              paths.dir[k], j, out, counters);
+    }
 
     bool blocked[kBatchLanes];
     scene.occludedLanes(
@@ -325,11 +392,11 @@ void advanceBatchLanes(const RenderScene& scene, const int* lane, int live, int 
 }
 
 // The paths of up to kBatchSamples consecutive samples of a pixel, traced
-// together where every surface is Lambertian (RenderScene::batchesDiffusePaths):
-// the same estimator as estimateRadiance, bit for bit, but depth by depth the
-// live paths are packed into groups of kBatchLanes — so that as paths end the
-// rest still fill whole packets — and each group's arithmetic runs as one
-// shadeDiffuseBatch, its shadow rays and bounce rays each as one Embree packet.
+// together: the same estimator as estimateRadiance, bit for bit, but depth by
+// depth the live paths are packed into groups of kBatchLanes — so that as
+// paths end the rest still fill whole packets — and each group's Lambertian
+// vertices are shaded as one shadeDiffuseBatch (the others one at a time),
+// its shadow rays and bounce rays each traced as one Embree packet.
 // A sampler's values are pure functions of (pixel, index, dimension, seed), so
 // the draws may be made in any order. On entry found[k] and si[k] hold camera
 // ray k's hit; they are the paths' working state, overwritten. L[k] receives
@@ -349,8 +416,9 @@ void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* fo
         int lane[kBatchSamples], live = 0;
         for (int k = 0; k < count; ++k) {
             if (!paths.alive[k]) continue;
-            addEmission(lights, found[k], si[k], paths.dir[k], paths.beta[k], depth == 0,
-                        paths.prevBsdfPdf[k], paths.prevPoint[k], paths.prevNormal[k], L[k]);
+            addEmission(lights, found[k], si[k], paths.dir[k], paths.beta[k],
+                        depth == 0 || paths.specularBounce[k], paths.prevBsdfPdf[k],
+                        paths.prevPoint[k], paths.prevNormal[k], L[k]);
             paths.alive[k] = found[k] && depth != settings.maxDepth;
             if (paths.alive[k]) lane[live++] = k;
         }

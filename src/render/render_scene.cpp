@@ -1,6 +1,7 @@
 #include "render/render_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace pathlab {
@@ -35,9 +36,9 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              mesh.uvs.empty() ? nullptr : mesh.uvs.data(),
                              lights_->trianglesLights(unsigned(m)), mesh.material});
     }
-    batchesDiffusePaths_ =
-        std::all_of(desc_.materials.begin(), desc_.materials.end(),
-                    [](const Material& m) { return m.type == MaterialType::Diffuse; });
+    for (const Material& m : desc_.materials)
+        lambertian_.push_back(m.type == MaterialType::Diffuse);
+    allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
 }
 
 bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
@@ -69,17 +70,41 @@ void RenderScene::intersectLanes(const RayLanes& rays, const int* to, SurfaceInt
     }
 }
 
+namespace {
+
+// The root of |o + t·d − c|² = r² nearest Embree's t, in double precision.
+// Embree's packet and single-ray sphere tests round t differently; taking the
+// hit point from the ray alone makes a path's vertices independent of how its
+// rays were traced, so the batched integrator's image is the one-at-a-time
+// integrator's bit for bit.
+float sphereHitDistance(Vec3f o, Vec3f d, const Sphere& s, float embreeT) {
+    const double ox = double(o.x) - s.center.x, oy = double(o.y) - s.center.y,
+                 oz = double(o.z) - s.center.z;
+    const double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    const double b = ox * d.x + oy * d.y + oz * d.z;  // half the linear term
+    const double c = ox * ox + oy * oy + oz * oz - double(s.radius) * s.radius;
+    const double disc = b * b - a * c;
+    if (disc < 0) return embreeT;  // a grazing hit Embree found and the quadratic misses
+    // The root away from cancellation, and the other as c / (a·t) (Vieta).
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    const double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    return float(std::abs(t0 - embreeT) < std::abs(t1 - embreeT) ? t0 : t1);
+}
+
+}  // namespace
+
 void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
                                   SurfaceInteraction* si) const {
-    si->p = o + d * hit.t;
     si->light = -1;
     if (hit.geomId == accel_->sphereGeometryId()) {
         const Sphere& s = desc_.spheres[hit.primId];
+        si->p = o + d * sphereHitDistance(o, d, s, hit.t);
         si->ng = si->ns = normalize(si->p - s.center);
         si->uv = {0, 0};
         si->material = s.material;
         return;
     }
+    si->p = o + d * hit.t;
     const MeshHitData& mesh = meshHits_[hit.geomId];
     const unsigned* idx = mesh.indices + 3 * size_t(hit.primId);
     const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;

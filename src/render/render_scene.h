@@ -56,9 +56,11 @@ class RenderScene {
     Bsdf bsdfAt(const SurfaceInteraction& si) const;
     // The ray-origin offset of offsetOrigin.
     float epsilon() const { return epsilon_; }
-    // True when every material is Lambertian: then paths are traced eight at
-    // a time (estimateRadianceBatch).
-    bool batchesDiffusePaths() const { return batchesDiffusePaths_; }
+    // Whether surfaces of material m are Lambertian, which the batched
+    // integrator shades eight at a time (shadeDiffuseBatch), and whether every
+    // material is, so that no vertex needs the one-at-a-time shading.
+    bool isLambertian(int material) const { return lambertian_[size_t(material)] != 0; }
+    bool allLambertian() const { return allLambertian_; }
 
   private:
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
@@ -80,7 +82,8 @@ class RenderScene {
     std::vector<std::vector<Vec3f>> triangleNormals_;  // per mesh, per triangle
     std::vector<MeshHitData> meshHits_;                // per mesh
     float epsilon_ = 1e-4f;
-    bool batchesDiffusePaths_ = false;
+    std::vector<char> lambertian_;  // per material
+    bool allLambertian_ = false;
 };
 
 // Inline: at every vertex; the texture coordinates are read only for a

@@ -100,7 +100,7 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
         result.counters.rays += uint64_t(count);
         result.counters.dimensions += 2 * uint64_t(count);
         Vec3f radiance[kBatchSamples];
-        if (integrator.batchDiffusePaths && scene.batchesDiffusePaths())
+        if (integrator.batchPaths)
             estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
                                   result.counters, radiance);
         else
@@ -205,7 +205,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
     const PinholeCamera camera(scene.description().camera, res);
     const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
-                                        settings.rouletteDepth, settings.batchDiffusePaths};
+                                        settings.rouletteDepth, settings.batchPaths};
 
     std::vector<Tile> tiles;
     for (int y = 0; y < res.y; y += kTileSize)

@@ -21,7 +21,7 @@ struct RenderSettings {
     int maxDepth = 8;
     bool russianRoulette = true;
     int rouletteDepth = kDefaultRouletteDepth;  // bounces before roulette may end a path
-    bool batchDiffusePaths = true;              // IntegratorSettings::batchDiffusePaths
+    bool batchPaths = true;                     // IntegratorSettings::batchPaths
     int threads = 0;                            // 0: all cores
     bool progress = false;
     // Also keep the image after each of these sample counts (ascending, each
