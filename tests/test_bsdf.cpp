@@ -2,6 +2,8 @@
 // f()/pdf(), no BSDF creates energy, Fresnel and refraction match closed forms.
 #include <gtest/gtest.h>
 
+#include <complex>
+
 #include "chi_square.h"
 #include "core/rng.h"
 #include "render/bsdf.h"
@@ -140,6 +142,27 @@ TEST(Fresnel, DielectricMatchesClosedForms) {
     EXPECT_NEAR(fresnelDielectric(ci, 1.5f), rPerp * rPerp / 2, 1e-6f);
     // A conductor with k = 0 is a dielectric.
     EXPECT_NEAR(fresnelComplex(0.7f, 1.5f, 0.0f), fresnelDielectric(0.7f, 1.5f), 1e-6f);
+}
+
+TEST(Fresnel, ConductorMatchesTheComplexFresnelEquations) {
+    // The reflectances r = (η̃ cosθi − cosθt) / (η̃ cosθi + cosθt) and
+    // (cosθi − η̃ cosθt) / (cosθi + η̃ cosθt) with complex η̃ = η + ik and
+    // cosθt = √(1 − sin²θi / η̃²), in double precision, against the real
+    // closed form, over grazing to normal incidence and metal-like indices.
+    using C = std::complex<double>;
+    for (double eta : {0.2, 0.27, 1.1, 1.5, 3.0})
+        for (double k : {0.0, 0.5, 2.4, 3.9})
+            for (double cosI : {0.001, 0.05, 0.3, 0.5, 0.7071, 0.9, 1.0}) {
+                const C n(eta, k);
+                const C cosT = std::sqrt(1.0 - (1 - cosI * cosI) / (n * n));
+                const C rPar = (n * cosI - cosT) / (n * cosI + cosT);
+                const C rPerp = (cosI - n * cosT) / (cosI + n * cosT);
+                const double expected = (std::norm(rPar) + std::norm(rPerp)) / 2;
+                EXPECT_NEAR(fresnelComplex(float(cosI), float(eta), float(k)), expected, 2e-6)
+                    << "eta " << eta << " k " << k << " cos " << cosI;
+            }
+    // Grazing incidence reflects everything.
+    EXPECT_FLOAT_EQ(fresnelComplex(0.0f, 0.27f, 2.8f), 1.0f);
 }
 
 TEST(Ggx, DistributionIsNormalisedOverProjectedArea) {
