@@ -51,7 +51,42 @@ class StandardSampler {
     }
     Vec2f getPixel2D() { return get2D(); }
 
+    // Lane draws (sampler.h): each lane's engine output at dimension d is its
+    // seed state times 16807^(d+1), so every lane's values come from one
+    // multiply each instead of re-seeding one engine and stepping it lane
+    // after lane (a chain of dependent multiplies). They leave the sampler
+    // where the last lane's per-sample draw would.
+    void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
+        for (int j = 0; j < count; ++j) out[j] = valueAt(seedState(p, indices[j]), dim);
+        finishLanes(p, indices, count, dim + 1);
+    }
+    void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
+        for (int j = 0; j < count; ++j) {
+            const uint64_t state = seedState(p, indices[j]);
+            out[j] = {valueAt(state, dim), valueAt(state, dim + 1)};
+        }
+        finishLanes(p, indices, count, dim + 2);
+    }
+    void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
+        get2DLanes(p, indices, count, dims::kPixel, out);
+    }
+
   private:
+    // get1D's value at dimension `dim` of the sample seeded with `state`: the
+    // same engine and distribution, seeded one step before the output.
+    float valueAt(uint64_t state, int dim) {
+        MinimalStandardEngine engine(
+            static_cast<uint32_t>(state * multiplierPower(dim) % kModulus));
+        const float v = distribution_(engine);
+        return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
+    }
+    void finishLanes(Vec2i p, const int* indices, int count, int nextDimension) {
+        if (count == 0) return;
+        pixel_ = p, index_ = indices[count - 1], position_ = nextDimension;
+        engine_.seed(static_cast<uint32_t>(seedState(p, index_) * multiplierPower(nextDimension) %
+                                           kModulus));
+    }
+
     // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly. The
     // last kBatchSamples samples' states are kept: the renderer returns to
     // each sample of a batch at every bounce.
