@@ -341,8 +341,16 @@ TEST(DiffuseBatch, RendersTheScalarIntegratorsImageWithSpecularSurfaces) {
             }
     }
     const std::vector<RenderScene> variants = specularVariants();
-    // Glass floor, ceiling, back wall and blocks.
+    // Glass floor, ceiling, back wall and blocks: groups of glass vertices
+    // alone (no lane draws at all), with every sampler.
     expectSameRenderAcrossBatches(variants[2], {"sobol", "halton-owen", "standard"});
+    for (const SamplerInfo& info : samplerInfos()) {
+        RenderSettings s;
+        s.sampler = info.name;
+        s.resolution = {8, 8};
+        s.samplesPerPixel = 16;
+        expectSameRender(variants[2], s);
+    }
 }
 
 }  // namespace

@@ -323,7 +323,9 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
     float uChoice[kBatchLanes] = {};
     Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
     const bool choice = lights.choiceUsesSample();
-    drawVertexLanes(sampler, pixel, index, lambertian, base, choice, uChoice, uLight, uDirection);
+    if (lambertian > 0)
+        drawVertexLanes(sampler, pixel, index, lambertian, base, choice, uChoice, uLight,
+                        uDirection);
     counters.dimensions += uint64_t(lambertian) * (choice ? 5 : 4);
     DiffuseBatchInput& in = paths.in;
     DiffuseBatchOutput& out = paths.out;
