@@ -371,6 +371,24 @@ TEST(PermutationDigits, TablesEqualTheElementByElementPermutation) {
     }
 }
 
+TEST(PermutationDigits, LanesEqualTheElementByElementPermutation) {
+    // permutationLanes (stratified's lane draws), with every instruction set
+    // available: eight indices at a time, spread over [0, n) in steps of 7,
+    // against permutationElement.
+    for (SimdLevel level : scrambleLaneLevels())
+        for (uint32_t n : {1u, 3u, 8u, 24u, 64u, 100u, 1024u})
+            for (uint64_t seed : {uint64_t(0), uint64_t(0x9e3779b97f4a7c15)})
+                for (uint32_t first = 0; first < n; first += kCameraPacketSamples) {
+                    uint32_t index[kCameraPacketSamples], out[kCameraPacketSamples];
+                    for (int j = 0; j < kCameraPacketSamples; ++j)
+                        index[j] = (first + uint32_t(j) * 7) % n;
+                    permutationLanes(PermutationDomain(n), seed, index, out, level);
+                    for (int j = 0; j < kCameraPacketSamples; ++j)
+                        EXPECT_EQ(out[j], permutationElement(index[j], n, seed))
+                            << "n " << n << " index " << index[j];
+                }
+}
+
 TEST(PermutationDigits, PermutationElementKeepsItsValues) {
     // Values of permutationElement from before its range was kept in a
     // PermutationDomain (kPinnedElements): the stratified sampler's strata

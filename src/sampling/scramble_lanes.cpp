@@ -124,4 +124,17 @@ void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out, 
         while (out[i] >= n) out[i] = permuteInRange(out[i], d, s0, s1);
 }
 
+void permutationLanes(const PermutationDomain& d, uint64_t seed, const uint32_t* index,
+                      uint32_t* out, SimdLevel limit) {
+    const auto s0 = static_cast<uint32_t>(seed), s1 = static_cast<uint32_t>(seed >> 32);
+    if (useAvx2(limit))
+        avx2::permutationLanesRound(d, s0, s1, index, out);
+    else
+        baseline::permutationLanesRound(d, s0, s1, index, out);
+    const uint32_t n = d.n;
+    if ((n & (n - 1)) == 0) return;
+    for (int j = 0; j < kCameraPacketSamples; ++j)
+        while (out[j] >= n) out[j] = permuteInRange(out[j], d, s0, s1);
+}
+
 }  // namespace pathlab

@@ -41,5 +41,10 @@ void owenScrambleReversedLanes2D(const uint32_t* reversedX, const uint32_t* reve
 // multiply chain is long; a table made in one loop pays it once.
 void permutationTable(const PermutationDomain& d, uint64_t seed, uint32_t* out,
                       SimdLevel limit = SimdLevel::Avx512);
+// out[j] = permutationElement(index[j], d.n, seed) for the kCameraPacketSamples
+// lanes (every index below d.n, the lanes past the live ones too): a lane
+// draw's elements alone, for a dimension few of a pixel's samples draw.
+void permutationLanes(const PermutationDomain& d, uint64_t seed, const uint32_t* index,
+                      uint32_t* out, SimdLevel limit = SimdLevel::Avx512);
 
 }  // namespace pathlab

@@ -61,8 +61,8 @@ class StratifiedSampler {
         const float dx = cursor_.nextFloat(), dy = cursor_.nextFloat();
         return jittered2D(stratum, dx, dy);
     }
-    // Lane draws (sampler.h): each lane's stratum (from the dimension's table
-    // where there is one), then its jitter. They leave the sampler where the
+    // Lane draws (sampler.h): each lane's stratum (lanesStrata), then its
+    // jitter. They leave the sampler where the
     // last lane's per-sample draw would (sampler.h asks for no position: the
     // Halton and Owen-scrambled samplers' leave it at the first lane's).
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
@@ -127,9 +127,16 @@ class StratifiedSampler {
         return permutationElement(index, strata_,
                                   strataHashes_.get(dim, [&] { return strataHash(dim); }));
     }
+    // The lanes' strata: their permutation elements alone, side by side
+    // (permutationLanes), where a table would compute all spp_ elements for a
+    // dimension that, deeper in the paths, few of the pixel's samples draw.
     void lanesStrata(Vec2i p, const int* indices, int count, int dim, uint32_t* strata) {
         setPixel(p);
-        for (int j = 0; j < count; ++j) strata[j] = stratumOf(sampleInPixel(indices[j]), dim);
+        uint32_t lanes[kCameraPacketSamples];
+        for (int j = 0; j < kCameraPacketSamples; ++j)
+            lanes[j] = j < count ? sampleInPixel(indices[j]) : 0;
+        permutationLanes(strata_, strataHashes_.get(dim, [&] { return strataHash(dim); }), lanes,
+                         strata);
     }
     float jittered1D(uint32_t stratum, float u) const {
         const float v = float(stratum) + u;
