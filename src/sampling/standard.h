@@ -33,10 +33,7 @@ class StandardSampler {
             position_ = dim;
             return;
         }
-        pixel_ = p, index_ = index, position_ = dim;
-        // `dim` steps on from the sample's seed state x the state is
-        // x·16807^dim mod (2^31 − 1): one multiply instead of `dim`.
-        engine_.seed(static_cast<uint32_t>(seedState(p, index) * multiplierPower(dim) % kModulus));
+        reseed(p, index, dim);
     }
     float get1D() {
         // The presentation clamps every value to [0, 1 − ε]; generate_canonical
@@ -75,16 +72,22 @@ class StandardSampler {
     // get1D's value at dimension `dim` of the sample seeded with `state`: the
     // same engine and distribution, seeded one step before the output.
     float valueAt(uint64_t state, int dim) {
-        MinimalStandardEngine engine(
-            static_cast<uint32_t>(state * multiplierPower(dim) % kModulus));
+        MinimalStandardEngine engine(stateAt(state, dim));
         const float v = distribution_(engine);
         return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
     }
     void finishLanes(Vec2i p, const int* indices, int count, int nextDimension) {
-        if (count == 0) return;
-        pixel_ = p, index_ = indices[count - 1], position_ = nextDimension;
-        engine_.seed(static_cast<uint32_t>(seedState(p, index_) * multiplierPower(nextDimension) %
-                                           kModulus));
+        if (count > 0) reseed(p, indices[count - 1], nextDimension);
+    }
+    // The engine at dimension `dim` of the sample, seeded afresh.
+    void reseed(Vec2i p, int index, int dim) {
+        pixel_ = p, index_ = index, position_ = dim;
+        engine_.seed(stateAt(seedState(p, index), dim));
+    }
+    // The engine's state `dim` steps on from a sample's seed state x:
+    // x·16807^dim mod (2^31 − 1), one multiply instead of `dim` steps.
+    static uint32_t stateAt(uint64_t seed, int dim) {
+        return static_cast<uint32_t>(seed * multiplierPower(dim) % kModulus);
     }
 
     // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly. The

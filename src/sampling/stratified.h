@@ -62,9 +62,9 @@ class StratifiedSampler {
         return jittered2D(stratum, dx, dy);
     }
     // Lane draws (sampler.h): each lane's stratum (lanesStrata), then its
-    // jitter. They leave the sampler where the
-    // last lane's per-sample draw would (sampler.h asks for no position: the
-    // Halton and Owen-scrambled samplers' leave it at the first lane's).
+    // jitter. They leave the sampler where the last lane's per-sample draw
+    // would (sampler.h asks for no position: the Halton and Owen-scrambled
+    // samplers' leave it at the first lane's).
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
         uint32_t strata[kCameraPacketSamples];
         lanesStrata(p, indices, count, dim, strata);
