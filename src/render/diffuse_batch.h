@@ -6,7 +6,7 @@
 // lanes are structure-of-arrays, computed eight at a time with AVX2 or four at a time with SSE, and
 // every branch is a select.
 //
-// Every value is bit-identical to the scalar path (estimateDirect with
+// Every value is bit-identical to the scalar path (sampleDirect with
 // sampleByArea, Bsdf's Lambertian sample, Frame, offsetOrigin): the same IEEE
 // operations in the same order, lane by lane — tested against them in
 // tests/test_diffuse_batch.cpp. (No fused multiply-add: the build targets

@@ -103,13 +103,6 @@ inline Vec3f traceShadowRay(const RenderScene& scene, const DirectSample& d,
     return scene.occluded(d.origin, d.toLight, d.tMax) ? Vec3f(0.0f) : d.contribution;
 }
 
-inline Vec3f estimateDirect(const RenderScene& scene, const SurfaceInteraction& si,
-                            const Frame& frame, const Bsdf& bsdf, Vec3f wo, float uChoice,
-                            Vec2f uLight, PathCounters& counters) {
-    const auto d = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
-    return d ? traceShadowRay(scene, *d, counters) : Vec3f(0.0f);
-}
-
 // Russian roulette's probability of ending the path after vertex `depth`
 // with throughput beta (pbrt-v4's rule); 0 where roulette does not play.
 inline float terminationProbability(const IntegratorSettings& settings, int depth, Vec3f beta) {
@@ -156,6 +149,39 @@ inline void addEmission(const LightSet& lights, bool found, const SurfaceInterac
     }
 }
 
+// A vertex shaded on its own: its draws (through `draws`, the vertex's
+// dimensions), next-event estimation unless the BSDF is specular, and the
+// BSDF sample with the bounce's world direction and nudged origin. The
+// scalar integrator shades every vertex so, the batched one those that are
+// not Lambertian.
+struct VertexShading {
+    bool lightSampled = false;  // next-event estimation ran (non-specular BSDF)
+    std::optional<DirectSample> direct;
+    std::optional<BsdfSample> bounce;
+    Vec3f wi, origin;  // where bounce is set
+};
+template <Sampler S>
+VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
+                          const SurfaceInteraction& si, Vec3f dir) {
+    const LightSet& lights = scene.lights();
+    const Bsdf bsdf = scene.bsdfAt(si);
+    const Frame frame(si.ns);
+    const Vec3f wo = frame.toLocal(-dir);
+    VertexShading v;
+    if (!bsdf.isSpecular()) {
+        const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
+        const Vec2f uLight = draws.get2D(dims::kLightPoint);
+        v.lightSampled = true;
+        v.direct = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
+    }
+    const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
+    const Vec2f uDirection =
+        bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
+    v.bounce = bsdf.sample(wo, uLobe, uDirection);
+    if (v.bounce) v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+    return v;
+}
+
 // The radiance arriving along a path whose first segment (origin → first
 // surface, or escape when !found) has already been traced: the camera rays of
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
@@ -179,28 +205,17 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         if (!found || depth == settings.maxDepth) break;
 
         VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
-        const Bsdf bsdf = scene.bsdfAt(si);
-        const Frame frame(si.ns);
-        const Vec3f wo = frame.toLocal(-dir);
-        if (!bsdf.isSpecular()) {
-            const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
-            const Vec2f uLight = draws.get2D(dims::kLightPoint);
-            L += beta * estimateDirect(scene, si, frame, bsdf, wo, uChoice, uLight, counters);
-        }
-
-        const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
-        const Vec2f uDirection =
-            bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
-        const auto bs = bsdf.sample(wo, uLobe, uDirection);
-        if (!bs) break;
-        const Vec3f wi = frame.toWorld(bs->wi);
-        beta *= bs->weight();
-        specularBounce = bs->specular;
-        prevBsdfPdf = bs->pdf;
+        const VertexShading v = shadeVertex(scene, draws, si, dir);
+        if (v.lightSampled)
+            L += beta * (v.direct ? traceShadowRay(scene, *v.direct, counters) : Vec3f(0.0f));
+        if (!v.bounce) break;
+        beta *= v.bounce->weight();
+        specularBounce = v.bounce->specular;
+        prevBsdfPdf = v.bounce->pdf;
         prevPoint = si.p;
         prevNormal = si.ns;
-        origin = scene.offsetOrigin(si, wi);
-        dir = wi;
+        origin = v.origin;
+        dir = v.wi;
 
         if (!pathContinues(settings, depth, draws, beta)) break;
     }
@@ -244,45 +259,31 @@ struct BatchPaths {
     DiffuseBatchOutput out{};
 };
 
-// A vertex that is not Lambertian, shaded on its own into lane j of a
-// group's output, as estimateRadiance's loop shades it: its own draws,
-// next-event estimation unless the BSDF is specular, and the BSDF sample.
+// A vertex that is not Lambertian, shaded on its own (shadeVertex, as
+// estimateRadiance's loop shades it) into lane j of a group's output.
 // Returns whether the bounce is specular.
 template <Sampler S>
 bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampleIndex, int depth,
                     const SurfaceInteraction& si, Vec3f dir, int j, DiffuseBatchOutput& out,
                     PathCounters& counters) {
-    const LightSet& lights = scene.lights();
     VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
-    const Bsdf bsdf = scene.bsdfAt(si);
-    const Frame frame(si.ns);
-    const Vec3f wo = frame.toLocal(-dir);
-    out.shadow[j] = 0;
-    if (!bsdf.isSpecular()) {
-        const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
-        const Vec2f uLight = draws.get2D(dims::kLightPoint);
-        if (const auto d = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight)) {
-            out.shadow[j] = 1;
-            out.sox[j] = d->origin.x, out.soy[j] = d->origin.y, out.soz[j] = d->origin.z;
-            out.sdx[j] = d->toLight.x, out.sdy[j] = d->toLight.y, out.sdz[j] = d->toLight.z;
-            out.shadowTMax[j] = d->tMax;
-            const Vec3f c = d->contribution;
-            out.directR[j] = c.x, out.directG[j] = c.y, out.directB[j] = c.z;
-        }
+    const VertexShading v = shadeVertex(scene, draws, si, dir);
+    out.shadow[j] = v.direct.has_value();
+    if (const auto& d = v.direct) {
+        out.sox[j] = d->origin.x, out.soy[j] = d->origin.y, out.soz[j] = d->origin.z;
+        out.sdx[j] = d->toLight.x, out.sdy[j] = d->toLight.y, out.sdz[j] = d->toLight.z;
+        out.shadowTMax[j] = d->tMax;
+        const Vec3f c = d->contribution;
+        out.directR[j] = c.x, out.directG[j] = c.y, out.directB[j] = c.z;
     }
-    const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
-    const Vec2f uDirection =
-        bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
-    const auto bs = bsdf.sample(wo, uLobe, uDirection);
-    out.bounce[j] = bs.has_value();
-    if (!bs) return false;
-    const Vec3f wi = frame.toWorld(bs->wi), weight = bs->weight();
-    const Vec3f origin = scene.offsetOrigin(si, wi);
-    out.ox[j] = origin.x, out.oy[j] = origin.y, out.oz[j] = origin.z;
-    out.wx[j] = wi.x, out.wy[j] = wi.y, out.wz[j] = wi.z;
+    out.bounce[j] = v.bounce.has_value();
+    if (!v.bounce) return false;
+    const Vec3f weight = v.bounce->weight();
+    out.ox[j] = v.origin.x, out.oy[j] = v.origin.y, out.oz[j] = v.origin.z;
+    out.wx[j] = v.wi.x, out.wy[j] = v.wi.y, out.wz[j] = v.wi.z;
     out.weightR[j] = weight.x, out.weightG[j] = weight.y, out.weightB[j] = weight.z;
-    out.pdf[j] = bs->pdf;
-    return bs->specular;
+    out.pdf[j] = v.bounce->pdf;
+    return v.bounce->specular;
 }
 
 // A group's Lambertian vertices in its first lanes, the others after them;
