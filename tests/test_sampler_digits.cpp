@@ -141,6 +141,19 @@ TEST(HaltonDigits, TabulatedRadicalInverseMatchesTheDigitLoop) {
     }
 }
 
+TEST(HaltonDigits, BaseTwoBitReversalMatchesTheDigitLoop) {
+    // The pixel lanes' base-2 radical inverse (a bit reversal) against the
+    // general digit loop: every index below 2^20, then a spread up to 2^32 − 1.
+    for (uint32_t a = 0; a < (1u << 20); ++a)
+        ASSERT_EQ(bits(radicalInverseBase2(a)), bits(radicalInverse(2, a))) << "index " << a;
+    std::mt19937 rng(3);
+    for (int i = 0; i < 200000; ++i) {
+        const uint32_t a = rng() | (i & 1 ? 0x80000000u : 0u);
+        ASSERT_EQ(bits(radicalInverseBase2(a)), bits(radicalInverse(2, a))) << "index " << a;
+    }
+    ASSERT_EQ(bits(radicalInverseBase2(~0u)), bits(radicalInverse(2, ~0u)));
+}
+
 TEST(HaltonDigits, TabulatedDimensionsMatchTheDigitLoops) {
     const int* primes = primeTable();
     const auto indices = haltonIndices();

@@ -206,6 +206,27 @@ class HaltonSamplerT {
                 radicalInverse(bases_[1], haltonIndex_ / uint64_t(mapping_.baseScales[1]))};
     }
 
+    // The pixel dimensions of several samples (sampler.h's drawPixelLanes),
+    // the same floats as getPixel2D: base 2's radical inverse is a bit
+    // reversal, base 3's runs side by side in the lane kernels, and the
+    // image-scale digits are dropped by a shift and a multiply instead of a
+    // division per sample.
+    void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
+        uint64_t a[kCameraPacketSamples];
+        if (!laneIndices(p, indices, count, dims::kPixel, 2, a)) {
+            for (int j = 0; j < count; ++j)
+                startPixelSample(p, indices[j], dims::kPixel), out[j] = getPixel2D();
+            return;
+        }
+        float x[kCameraPacketSamples], y[kCameraPacketSamples];
+        for (int j = 0; j < kCameraPacketSamples; ++j) {
+            x[j] = radicalInverseBase2(uint32_t(a[j] >> mapping_.baseExponents[0]));
+            a[j] = rowScale_.quotient32(a[j]);
+        }
+        radicalInverseLanes(bases_[1], a, count, y);
+        for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
+    }
+
     // Lane draws (sampler.h): a tabulated dimension's digits for all the
     // lanes at once. Untabulated dimensions and indices from 2^32 on take the
     // digit loops lane by lane.
@@ -257,7 +278,8 @@ class HaltonSamplerT {
     int spp_;
     uint64_t seed_;
     HaltonImageMapping mapping_;
-    uint64_t stride_;  // mapping_.stride()
+    uint64_t stride_;       // mapping_.stride()
+    BaseDivider rowScale_;  // 3^k, mapping_.baseScales[1]
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
     const HaltonDimension* dimensions_ = nullptr;  // permutations_->dimensions
     const int* primes_;
@@ -407,6 +429,7 @@ HaltonSamplerT<kScrambling>::HaltonSamplerT(const SamplerConfig& c)
       seed_(c.seed),
       mapping_(c.resolution),
       stride_(mapping_.stride()),
+      rowScale_(uint32_t(mapping_.baseScales[1])),
       primes_(primeTable()),
       bases_(primeBases()) {
     if constexpr (kScrambling != HaltonScrambling::None) {

@@ -139,6 +139,15 @@ inline float radicalInverse(const PrimeBase& b, uint64_t a) {
                     kOneMinusEpsilon);
 }
 
+// radicalInverse in base 2 for a < 2^32: the mirrored digits are a's bits
+// reversed, and reverse(a)·2^-32 is the same exact double as the digit loop's
+// mirrored integer times 2^-digits, so the same float (tested) — a dozen
+// instructions instead of a chain of a dozen digit steps.
+inline float radicalInverseBase2(uint32_t a) {
+    return std::min(static_cast<float>(static_cast<double>(reverseBits32(a)) * 0x1p-32),
+                    kOneMinusEpsilon);
+}
+
 // The index whose first `digits` base-b digits, mirrored, give `inverse`:
 // Φ_b^{-1} restricted to `digits` digits (used for Halton's image-plane mapping).
 constexpr uint64_t inverseRadicalInverse(uint64_t inverse, int base, int digits) {

@@ -1,6 +1,7 @@
 // What a sampler costs per dimension when drawn the way the renderer draws on
 // the Cornell box: the camera rays of a batch of up to kBatchSamples samples
-// first (startPixelSample at dimension 0, getPixel2D each), then the batch's
+// first (their positions in the pixel through drawPixelLanes, a camera packet
+// of kCameraPacketSamples at a time, as traceCameraPacket draws them), then the batch's
 // paths together, as estimateRadianceBatch traces them: at each vertex depth,
 // kCameraPacketSamples paths at a time, the paths' light points
 // (dims::kLightPoint) and BSDF directions (dims::kBsdfDirection) through
@@ -31,10 +32,13 @@ constexpr int dimensionsPerPath(int depth) {
 template <typename S>
 float drawBatchDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
     float acc = 0;
-    for (int k = 0; k < count; ++k) {
-        s.startPixelSample(pixel, firstIndex + k, dims::kPixel);
-        const Vec2f p = s.getPixel2D();
-        acc += p.x + p.y;
+    for (int k0 = 0; k0 < count; k0 += kCameraPacketSamples) {
+        const int lanes = std::min(kCameraPacketSamples, count - k0);
+        int indices[kCameraPacketSamples];
+        for (int j = 0; j < lanes; ++j) indices[j] = firstIndex + k0 + j;
+        Vec2f p[kCameraPacketSamples];
+        drawPixelLanes(s, pixel, indices, lanes, p);
+        for (int j = 0; j < lanes; ++j) acc += p[j].x + p[j].y;
     }
     for (int d = 0; d < depth; ++d) {
         const int base = dims::bounceBase(d);
