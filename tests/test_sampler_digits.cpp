@@ -141,6 +141,24 @@ TEST(HaltonDigits, TabulatedRadicalInverseMatchesTheDigitLoop) {
     }
 }
 
+TEST(HaltonDigits, DigitCountIsPbrtV4s) {
+    // The scrambled radical inverses stop after the digit whose largest
+    // contribution reaches 2^-25: pbrt-v4's loop condition, in float, for
+    // every prime base.
+    auto pbrtDigitCount = [](int base) {
+        const float invBase = 1.0f / float(base);
+        float invBaseM = 1.0f;
+        int digits = 0;
+        for (; 1.0f - invBaseM < 1.0f; ++digits) invBaseM *= invBase;
+        return digits;
+    };
+    for (int d = 0; d < kPrimeTableSize; ++d)
+        ASSERT_EQ(floatDigitCount(primeTable()[d]), pbrtDigitCount(primeTable()[d]))
+            << "base " << primeTable()[d];
+    EXPECT_EQ(floatDigitCount(2), 25);
+    EXPECT_EQ(floatDigitCount(3), 16);
+}
+
 TEST(HaltonDigits, BaseTwoBitReversalMatchesTheDigitLoop) {
     // The pixel lanes' base-2 radical inverse (a bit reversal) against the
     // general digit loop: every index below 2^20, then a spread up to 2^32 − 1.

@@ -128,7 +128,7 @@ void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
-    static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 26
+    static constexpr int kMaxDigits = 32;  // floatDigitCount(2) = 25
     static constexpr int kTabulatedBases = 128;
     // Pair tables stop here: b² entries per pair of digit positions (61: 3721
     // entries, 3 pairs), 122 KB per seed for the 18 bases up to 61 together.

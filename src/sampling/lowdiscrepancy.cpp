@@ -68,11 +68,16 @@ float radicalInverse(int base, uint64_t a) {
 }
 
 int floatDigitCount(int base) {
-    // Digits whose weight b^-k still reaches the float mantissa (2^-24),
-    // tabulated for the prime bases' range.
+    // Digits k whose largest contribution (b − 1)·b^-(k+1) still reaches
+    // 2^-25, half the spacing of the floats just below 1 — the count of
+    // pbrt-v4's scrambled radical inverses (`while (1 - invBaseM < 1)`), for
+    // every prime base. (The count was one more before, from a weight that
+    // started at b^0 instead of b^-1: a digit worth at most 2^-25/b·(b−1)
+    // and a sixth to a third of the scrambling loops' work.) Tabulated for the
+    // prime bases' range.
     auto count = [](int b) {
         int digits = 0;
-        for (double weight = 1.0; weight * (b - 1) >= 0x1p-25; weight /= b) ++digits;
+        for (double weight = 1.0 / b; weight * (b - 1) >= 0x1p-25; weight /= b) ++digits;
         return digits;
     };
     static const std::vector<uint8_t> table = [&] {

@@ -28,7 +28,7 @@ struct Reference {
 
 // Bumped whenever the renderer's output for the same inputs changes, so stale
 // references are never reused.
-inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-5";
+inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-6";
 
 // Hash of what determines the reference's pixels: the scene as loaded (camera,
 // materials, textures, geometry), the scene file's bytes for a file scene, the
