@@ -38,6 +38,27 @@ TEST(SamplerValues, MinimalStandardTenThousandthOutput) {
     EXPECT_EQ(engine(), 1043618065u);
 }
 
+TEST(SamplerValues, StandardLaneValuesAreTheDistributionsFloats) {
+    // StandardSampler::canonicalFloat, which the lane draws use, against
+    // std::uniform_real_distribution<float> on the engine whose next output is
+    // x: every output whose float rounds into the clamp (the top 2^8), the
+    // bottom, and a spread between. The engine seeded with s outputs
+    // 16807·s mod (2^31 − 1), so s = x·16807^-1.
+    constexpr uint64_t m = 2147483647, inverse = 1407677000;  // 16807·inverse ≡ 1
+    ASSERT_EQ(16807 * inverse % m, 1u);
+    std::uniform_real_distribution<float> distribution(0.0f, 1.0f);
+    auto expectSame = [&](uint32_t x) {
+        MinimalStandardEngine engine(uint32_t(x * inverse % m));
+        const float v = distribution(engine);
+        ASSERT_EQ(StandardSampler::canonicalFloat(x), v < kOneMinusEpsilon ? v : kOneMinusEpsilon)
+            << "engine output " << x;
+    };
+    for (uint32_t x = 1; x < 4096; ++x) expectSame(x);
+    for (uint32_t x = uint32_t(m) - 1; x > uint32_t(m) - 4096; --x) expectSame(x);
+    std::mt19937 rng(5);
+    for (int i = 0; i < 200000; ++i) expectSame(1 + rng() % uint32_t(m - 1));
+}
+
 TEST(SamplerValues, HaltonPixelDimensionsAreRadicalInversesInBases2And3) {
     const auto pts = drawPoints("halton", 200, 0, 1);
     for (int i = 0; i < 200; ++i) {

@@ -49,33 +49,55 @@ class StandardSampler {
     Vec2f getPixel2D() { return get2D(); }
 
     // Lane draws (sampler.h): each lane's engine output at dimension d is its
-    // seed state times 16807^(d+1), so every lane's values come from one
-    // multiply each instead of re-seeding one engine and stepping it lane
-    // after lane (a chain of dependent multiplies). They leave the sampler
-    // where the last lane's per-sample draw would.
+    // seed state times 16807^(d+1) mod (2^31 − 1), so every lane's values
+    // come from one multiply each instead of re-seeding one engine and
+    // stepping it lane after lane (a chain of dependent multiplies), reduced
+    // by the Mersenne fold (mersenneMod) and turned into the distribution's
+    // float by canonicalFloat — the same values (tested). They leave the
+    // sampler where the last lane's per-sample draw would.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
-        for (int j = 0; j < count; ++j) out[j] = valueAt(seedState(p, indices[j]), dim);
+        uint64_t states[kCameraPacketSamples];
+        for (int j = 0; j < count; ++j) states[j] = seedState(p, indices[j]);
+        const uint64_t power = multiplierPower(dim + 1);
+        for (int j = 0; j < count; ++j) out[j] = canonicalFloat(mersenneMod(states[j] * power));
         finishLanes(p, indices, count, dim + 1);
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
-        for (int j = 0; j < count; ++j) {
-            const uint64_t state = seedState(p, indices[j]);
-            out[j] = {valueAt(state, dim), valueAt(state, dim + 1)};
-        }
+        uint64_t states[kCameraPacketSamples];
+        for (int j = 0; j < count; ++j) states[j] = seedState(p, indices[j]);
+        const uint64_t powerX = multiplierPower(dim + 1), powerY = multiplierPower(dim + 2);
+        for (int j = 0; j < count; ++j)
+            out[j] = {canonicalFloat(mersenneMod(states[j] * powerX)),
+                      canonicalFloat(mersenneMod(states[j] * powerY))};
         finishLanes(p, indices, count, dim + 2);
     }
     void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
         get2DLanes(p, indices, count, dims::kPixel, out);
     }
 
-  private:
-    // get1D's value at dimension `dim` of the sample seeded with `state`: the
-    // same engine and distribution, seeded one step before the output.
-    float valueAt(uint64_t state, int dim) {
-        MinimalStandardEngine engine(stateAt(state, dim));
-        const float v = distribution_(engine);
+    // What distribution_ makes of the engine output x, clamped as get1D
+    // clamps it: libstdc++'s generate_canonical takes one engine call and
+    // divides float(x − min) by float(max − min + 1) = float(2^31 − 2) =
+    // 2^31 exactly, so the value is float(x − 1)·2^-31; the rare ≥ 1 it
+    // replaces by nextafter(1, 0), which is kOneMinusEpsilon, the clamp's
+    // value too. Checked against the distribution itself (tested), so a
+    // standard library that computed it otherwise would fail the tests.
+    static float canonicalFloat(uint32_t x) {
+        const float v = static_cast<float>(x - 1) * 0x1p-31f;
         return v < kOneMinusEpsilon ? v : kOneMinusEpsilon;
     }
+
+  private:
+    // x mod (2^31 − 1) for x < 2^62 that is not a multiple of it (a product
+    // of a state and a power of 16807, both in [1, 2^31 − 2], never is): as
+    // 2^31 ≡ 1, x ≡ (x mod 2^31) + ⌊x / 2^31⌋, which is below 2^32 and is
+    // reduced by one subtraction at most. Shifts and adds where `%` is a
+    // multiply-high sequence.
+    static uint32_t mersenneMod(uint64_t x) {
+        const uint64_t folded = (x & kModulus) + (x >> 31);
+        return static_cast<uint32_t>(folded >= kModulus ? folded - kModulus : folded);
+    }
+
     void finishLanes(Vec2i p, const int* indices, int count, int nextDimension) {
         if (count > 0) reseed(p, indices[count - 1], nextDimension);
     }
@@ -87,7 +109,7 @@ class StandardSampler {
     // The engine's state `dim` steps on from a sample's seed state x:
     // x·16807^dim mod (2^31 − 1), one multiply instead of `dim` steps.
     static uint32_t stateAt(uint64_t seed, int dim) {
-        return static_cast<uint32_t>(seed * multiplierPower(dim) % kModulus);
+        return mersenneMod(seed * multiplierPower(dim));
     }
 
     // A valid state is in [1, 2^31 − 2]; the hash picks one uniformly. The
