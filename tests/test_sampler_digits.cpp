@@ -236,11 +236,22 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
                     float randomDigit[kCameraPacketSamples], owen[kCameraPacketSamples];
                     randomDigitScrambledLanes(t, a, count, randomDigit, level);
                     owenScrambledLanes(t, a, count, owen, level);
+                    // The 2D calls, with this dimension second and the first
+                    // dimension first.
+                    const HaltonDimension& first = perms->dimensions[0];
+                    float rdFirst[kCameraPacketSamples], rdSecond[kCameraPacketSamples];
+                    float owenFirst[kCameraPacketSamples], owenSecond[kCameraPacketSamples];
+                    randomDigitScrambledLanes2D(first, t, a, count, rdFirst, rdSecond, level);
+                    owenScrambledLanes2D(first, t, a, count, owenFirst, owenSecond, level);
                     for (int j = 0; j < count; ++j) {
                         ASSERT_EQ(bits(randomDigit[j]), bits(randomDigitScrambled(t, a[j])))
                             << "base " << t.base << " index " << a[j] << " level " << int(level);
                         ASSERT_EQ(bits(owen[j]), bits(owenScrambled(t, a[j])))
                             << "base " << t.base << " index " << a[j] << " level " << int(level);
+                        ASSERT_EQ(bits(rdSecond[j]), bits(randomDigit[j])) << "2D, base " << t.base;
+                        ASSERT_EQ(bits(owenSecond[j]), bits(owen[j])) << "2D, base " << t.base;
+                        ASSERT_EQ(bits(rdFirst[j]), bits(randomDigitScrambled(first, a[j])));
+                        ASSERT_EQ(bits(owenFirst[j]), bits(owenScrambled(first, a[j])));
                     }
                 }
             }
@@ -260,12 +271,17 @@ TEST(HaltonDigits, PlainLaneKernelMatchesTheScalarRadicalInverse) {
             const uint64_t* a = indices.data() + i;
             const int count = 1 + int(i / kCameraPacketSamples) % kCameraPacketSamples;
             for (SimdLevel level : levels) {
-                float x[kCameraPacketSamples];
+                float x[kCameraPacketSamples], first[kCameraPacketSamples],
+                    second[kCameraPacketSamples];
                 radicalInverseLanes(b, a, count, x, level);
-                for (int j = 0; j < count; ++j)
+                radicalInverseLanes2D(primeBases()[1], b, a, count, first, second, level);
+                for (int j = 0; j < count; ++j) {
                     ASSERT_EQ(bits(x[j]), bits(radicalInverse(primeTable()[d], a[j])))
                         << "base " << primeTable()[d] << " index " << a[j] << " level "
                         << int(level);
+                    ASSERT_EQ(bits(second[j]), bits(x[j])) << "2D, base " << primeTable()[d];
+                    ASSERT_EQ(bits(first[j]), bits(radicalInverse(3, a[j])));
+                }
             }
         }
     }

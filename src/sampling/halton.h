@@ -125,6 +125,15 @@ void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, 
 // The same for the plain sampler: out[j] = radicalInverse(b, a[j]).
 void radicalInverseLanes(const PrimeBase& b, const uint64_t* a, int count, float* out,
                          SimdLevel limit = SimdLevel::Avx512Vbmi);
+// Two dimensions of the same indices (a 2D draw) in one call: x from tx or
+// bx, y from ty or by, each exactly as the calls above give it.
+void randomDigitScrambledLanes2D(const HaltonDimension& tx, const HaltonDimension& ty,
+                                 const uint64_t* a, int count, float* x, float* y,
+                                 SimdLevel limit = SimdLevel::Avx512Vbmi);
+void owenScrambledLanes2D(const HaltonDimension& tx, const HaltonDimension& ty, const uint64_t* a,
+                          int count, float* x, float* y, SimdLevel limit = SimdLevel::Avx512Vbmi);
+void radicalInverseLanes2D(const PrimeBase& bx, const PrimeBase& by, const uint64_t* a, int count,
+                           float* x, float* y, SimdLevel limit = SimdLevel::Avx512Vbmi);
 
 // Seeded digit permutations for every prime base (immutable, shared by copies).
 struct HaltonDigitPermutations {
@@ -243,8 +252,7 @@ class HaltonSamplerT {
         if (!laneIndices(p, indices, count, dim, 2, a))
             return drawEachLane2D(*this, p, indices, count, dim, out);
         float x[kCameraPacketSamples], y[kCameraPacketSamples];
-        scrambleLanes(dimension_ - 2, a, count, x);
-        scrambleLanes(dimension_ - 1, a, count, y);
+        scrambleLanes2D(dimension_ - 2, a, count, x, y);
         for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
     }
 
@@ -265,6 +273,14 @@ class HaltonSamplerT {
             largest = std::max(largest, a[j]);
         }
         return first + used <= HaltonDigitPermutations::kTabulatedBases && largest >> 32 == 0;
+    }
+    void scrambleLanes2D(int d, const uint64_t* a, int count, float* x, float* y) const {
+        if constexpr (kScrambling == HaltonScrambling::None)
+            radicalInverseLanes2D(bases_[d], bases_[d + 1], a, count, x, y);
+        else if constexpr (kScrambling == HaltonScrambling::RandomDigit)
+            randomDigitScrambledLanes2D(dimensions_[d], dimensions_[d + 1], a, count, x, y);
+        else
+            owenScrambledLanes2D(dimensions_[d], dimensions_[d + 1], a, count, x, y);
     }
     void scrambleLanes(int d, const uint64_t* a, int count, float* out) const {
         if constexpr (kScrambling == HaltonScrambling::None)

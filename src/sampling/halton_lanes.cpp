@@ -113,4 +113,41 @@ void owenScrambledLanes(const HaltonDimension& t, const uint64_t* a, int count, 
         [&](int j) { out[j] = owenScrambled(t, a[j]); });
 }
 
+// The 2D draws' two dimensions in one call: one dispatch for both.
+void randomDigitScrambledLanes2D(const HaltonDimension& tx, const HaltonDimension& ty,
+                                 const uint64_t* a, int count, float* x, float* y,
+                                 SimdLevel limit) {
+    dispatch(
+        count, limit,
+        [&](auto kernels, int registers) {
+            kernels.randomDigit(tx, a, registers, x);
+            kernels.randomDigit(ty, a, registers, y);
+        },
+        [&](int j) {
+            x[j] = randomDigitScrambled(tx, a[j]), y[j] = randomDigitScrambled(ty, a[j]);
+        });
+}
+
+void radicalInverseLanes2D(const PrimeBase& bx, const PrimeBase& by, const uint64_t* a, int count,
+                           float* x, float* y, SimdLevel limit) {
+    dispatch(
+        count, limit,
+        [&](auto kernels, int registers) {
+            kernels.radicalInverse(bx, a, registers, x);
+            kernels.radicalInverse(by, a, registers, y);
+        },
+        [&](int j) { x[j] = radicalInverse(bx, a[j]), y[j] = radicalInverse(by, a[j]); });
+}
+
+void owenScrambledLanes2D(const HaltonDimension& tx, const HaltonDimension& ty, const uint64_t* a,
+                          int count, float* x, float* y, SimdLevel limit) {
+    dispatch<true>(
+        count, limit,
+        [&](auto kernels, int registers) {
+            kernels.owen(tx, a, registers, x);
+            kernels.owen(ty, a, registers, y);
+        },
+        [&](int j) { x[j] = owenScrambled(tx, a[j]), y[j] = owenScrambled(ty, a[j]); });
+}
+
 }  // namespace pathlab
