@@ -110,7 +110,10 @@ void HaltonDigitPermutations::addByteTables() {
         if (t.base <= uint32_t(kMaxByteTableBase))
             total += (t.base <= uint32_t(kMaxWrapFreeBase) ? 3 : 2) * size_t(t.base) +
                      size_t(t.digits) * t.base + pairEntries(t);
-    byteTables.resize(total);
+    // Padding past the last table: the lane kernels load a table's 64·k
+    // bytes whatever its size (kRegisterTableBytes), reading on into the
+    // next table or here, but look up only entries below its size.
+    byteTables.resize(total + kRegisterTableBytes);
     uint8_t* next = byteTables.data();
     // from[i mod size] for i < count.
     auto copy = [&next](const uint16_t* from, size_t size, size_t count) {

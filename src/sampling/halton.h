@@ -149,6 +149,9 @@ struct HaltonDigitPermutations {
     static constexpr int kMaxWrapFreeBase = 64;
     // Byte pair tables stop here: 13² = 169 entries in four registers.
     static constexpr int kMaxBytePairBase = 16;
+    // The most bytes a lane kernel loads from a byte table's start: four
+    // 64-byte registers.
+    static constexpr size_t kRegisterTableBytes = 256;
     uint64_t seed;
     std::vector<uint32_t> offset;  // start of base b_d's permutation in `table`
     std::vector<uint16_t> table;
