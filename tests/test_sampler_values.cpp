@@ -442,7 +442,9 @@ TEST(SamplerValues, LaneDrawsAtTheirLimits) {
     // scalar loops.
     for (const char* name :
          {"halton", "halton-rd", "halton-owen", "sobol-owen", "zsobol", "stratified"}) {
-        for (Vec2i resolution : {Vec2i{32, 16}, Vec2i{65536, 59049}}) {
+        // Images one pixel wide or tall: no image-scale digits in that base.
+        for (Vec2i resolution :
+             {Vec2i{32, 16}, Vec2i{65536, 59049}, Vec2i{32, 1}, Vec2i{1, 16}, Vec2i{1, 1}}) {
             const SamplerConfig config{64, 11, resolution};
             AnySampler lanes = makeSampler(name, config), single = makeSampler(name, config);
             std::visit(

@@ -233,7 +233,7 @@ class HaltonSamplerT {
         float x[kCameraPacketSamples], y[kCameraPacketSamples];
         for (int j = 0; j < kCameraPacketSamples; ++j) {
             x[j] = radicalInverseBase2(uint32_t(a[j] >> mapping_.baseExponents[0]));
-            a[j] = rowScale_.quotient32(a[j]);
+            a[j] = rowScale_.base > 1 ? rowScale_.quotient32(a[j]) : a[j];
         }
         radicalInverseLanes(bases_[1], a, count, y);
         for (int j = 0; j < count; ++j) out[j] = {x[j], y[j]};
@@ -297,8 +297,10 @@ class HaltonSamplerT {
     int spp_;
     uint64_t seed_;
     HaltonImageMapping mapping_;
-    uint64_t stride_;       // mapping_.stride()
-    BaseDivider rowScale_;  // 3^k, mapping_.baseScales[1]
+    uint64_t stride_;  // mapping_.stride()
+    // 3^k, mapping_.baseScales[1]; for k = 0 (an image one pixel tall) its
+    // reciprocal wraps to 0, so the lane draws skip the division by 1.
+    BaseDivider rowScale_;
     std::shared_ptr<const HaltonDigitPermutations> permutations_;
     const HaltonDimension* dimensions_ = nullptr;  // permutations_->dimensions
     const int* primes_;
