@@ -89,7 +89,8 @@ int floatDigitCount(int base);
 // inverse. For a < 2^32 the high half of a·⌈2^64/b⌉ is exactly ⌊a/b⌋: the
 // rounding error a·(⌈2^64/b⌉ − 2^64/b)/2^64 < 2^-32 never reaches the 1/b gap
 // between a/b's fractional part and the next integer (Granlund & Montgomery
-// 1994, "Division by Invariant Integers using Multiplication").
+// 1994, "Division by Invariant Integers using Multiplication"). For b ≥ 2:
+// b = 1 would need the reciprocal 2^64, which wraps to 0.
 struct BaseDivider {
     uint64_t base, reciprocal;
     explicit BaseDivider(uint32_t b) : base(b), reciprocal(~uint64_t(0) / b + 1) {}

@@ -29,13 +29,20 @@ constexpr int dimensionsPerPath(int depth) {
 // Samples firstIndex … firstIndex + count − 1 of `pixel` (count ≤
 // kBatchSamples), each a path of `depth` vertices; returns the sum of the
 // values so the work cannot be optimised away.
+// The sample indices of the group of up to kCameraPacketSamples samples that
+// starts k0 samples into the batch; returns how many there are.
+inline int groupIndices(int firstIndex, int count, int k0, int* indices) {
+    const int lanes = std::min(kCameraPacketSamples, count - k0);
+    for (int j = 0; j < lanes; ++j) indices[j] = firstIndex + k0 + j;
+    return lanes;
+}
+
 template <typename S>
 float drawBatchDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
     float acc = 0;
     for (int k0 = 0; k0 < count; k0 += kCameraPacketSamples) {
-        const int lanes = std::min(kCameraPacketSamples, count - k0);
         int indices[kCameraPacketSamples];
-        for (int j = 0; j < lanes; ++j) indices[j] = firstIndex + k0 + j;
+        const int lanes = groupIndices(firstIndex, count, k0, indices);
         Vec2f p[kCameraPacketSamples];
         drawPixelLanes(s, pixel, indices, lanes, p);
         for (int j = 0; j < lanes; ++j) acc += p[j].x + p[j].y;
@@ -43,9 +50,8 @@ float drawBatchDimensions(S& s, Vec2i pixel, int firstIndex, int count, int dept
     for (int d = 0; d < depth; ++d) {
         const int base = dims::bounceBase(d);
         for (int k0 = 0; k0 < count; k0 += kCameraPacketSamples) {
-            const int lanes = std::min(kCameraPacketSamples, count - k0);
             int indices[kCameraPacketSamples];
-            for (int j = 0; j < lanes; ++j) indices[j] = firstIndex + k0 + j;
+            const int lanes = groupIndices(firstIndex, count, k0, indices);
             float choice[kCameraPacketSamples];
             Vec2f light[kCameraPacketSamples], dir[kCameraPacketSamples];
             drawVertexLanes(s, pixel, indices, lanes, base, false, choice, light, dir);

@@ -59,7 +59,7 @@ class StandardSampler {
         uint64_t states[kCameraPacketSamples];
         for (int j = 0; j < count; ++j) states[j] = seedState(p, indices[j]);
         const uint64_t power = multiplierPower(dim + 1);
-        for (int j = 0; j < count; ++j) out[j] = canonicalFloat(mersenneMod(states[j] * power));
+        for (int j = 0; j < count; ++j) out[j] = laneValue(states[j], power);
         finishLanes(p, indices, count, dim + 1);
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
@@ -67,8 +67,7 @@ class StandardSampler {
         for (int j = 0; j < count; ++j) states[j] = seedState(p, indices[j]);
         const uint64_t powerX = multiplierPower(dim + 1), powerY = multiplierPower(dim + 2);
         for (int j = 0; j < count; ++j)
-            out[j] = {canonicalFloat(mersenneMod(states[j] * powerX)),
-                      canonicalFloat(mersenneMod(states[j] * powerY))};
+            out[j] = {laneValue(states[j], powerX), laneValue(states[j], powerY)};
         finishLanes(p, indices, count, dim + 2);
     }
     void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
@@ -98,6 +97,11 @@ class StandardSampler {
         return static_cast<uint32_t>(folded >= kModulus ? folded - kModulus : folded);
     }
 
+    // The value whose engine state is a seed state times `power` (16807^(d+1)
+    // for dimension d).
+    static float laneValue(uint64_t state, uint64_t power) {
+        return canonicalFloat(mersenneMod(state * power));
+    }
     void finishLanes(Vec2i p, const int* indices, int count, int nextDimension) {
         if (count > 0) reseed(p, indices[count - 1], nextDimension);
     }

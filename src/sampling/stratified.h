@@ -110,6 +110,10 @@ class StratifiedSampler {
     // The permutation's seed for (pixel, dimension): four chained hash rounds,
     // the same for all of a pixel's samples.
     uint64_t strataHash(int dim) const { return hashValues(pixel_.x, pixel_.y, dim, seed_); }
+    // strataHash for the untabulated dimensions, once per pixel and dimension.
+    uint64_t cachedStrataHash(int dim) {
+        return strataHashes_.get(dim, [&] { return strataHash(dim); });
+    }
     // Sample `index`'s stratum in dimension `dim` of the current pixel. One
     // permutation element is a chain of four dependent multiplies, which a
     // draw would wait for; the first kTabulatedDimensions dimensions' whole
@@ -124,8 +128,7 @@ class StratifiedSampler {
             }
             return table[index];
         }
-        return permutationElement(index, strata_,
-                                  strataHashes_.get(dim, [&] { return strataHash(dim); }));
+        return permutationElement(index, strata_, cachedStrataHash(dim));
     }
     // The lanes' strata: their permutation elements alone, side by side
     // (permutationLanes), where a table would compute all spp_ elements for a
@@ -135,8 +138,7 @@ class StratifiedSampler {
         uint32_t lanes[kCameraPacketSamples];
         for (int j = 0; j < kCameraPacketSamples; ++j)
             lanes[j] = j < count ? sampleInPixel(indices[j]) : 0;
-        permutationLanes(strata_, strataHashes_.get(dim, [&] { return strataHash(dim); }), lanes,
-                         strata);
+        permutationLanes(strata_, cachedStrataHash(dim), lanes, strata);
     }
     float jittered1D(uint32_t stratum, float u) const {
         const float v = float(stratum) + u;
