@@ -124,6 +124,43 @@ TEST(EmbreeAccel, RecorderSeesEveryRayTheRenderCounts) {
     EXPECT_GE(out.stats.dimensions, out.stats.paths * 2);
 }
 
+TEST(EmbreeAccel, RecorderMarksTheCameraPacketsCoherent) {
+    // The camera rays of a pixel are its only packets traced as coherent;
+    // bounce and shadow rays are not.
+    RenderScene scene(cornellBoxScene());
+    RayRecorder recorder;
+    scene.setRayRecorder(&recorder);
+    RenderSettings settings;
+    settings.samplesPerPixel = 16;  // two camera packets per pixel
+    settings.resolution = {8, 8};
+    render(scene, settings);
+    scene.setRayRecorder(nullptr);
+    size_t coherent = 0, coherentShadow = 0;
+    for (const RecordedRay& r : recorder.gather()) {
+        coherent += r.coherent;
+        coherentShadow += r.coherent && r.shadow;
+    }
+    EXPECT_EQ(coherent, size_t(8 * 8 * 16));
+    EXPECT_EQ(coherentShadow, 0u);
+}
+
+TEST(EmbreeAccel, ReplayGroupsRaysByKind) {
+    // Three coherent closest-hit rays, three incoherent ones, then two shadow
+    // rays: three packets (or streams), never a coherent and an incoherent
+    // ray in one.
+    RenderScene scene(cornellBoxScene());
+    const Vec3f eye = scene.description().camera.eye;
+    std::vector<RecordedRay> rays;
+    for (int k = 0; k < 3; ++k)
+        rays.push_back({eye, {0.01f * float(k), 0, -1}, 1e30f, false, true});
+    for (int k = 0; k < 3; ++k)
+        rays.push_back({eye, {0, 0.01f * float(k), -1}, 1e30f, false, false});
+    for (int k = 0; k < 2; ++k) rays.push_back({eye, {0, 0, -1}, 0.5f, true, false});
+    EXPECT_EQ(replayRays(scene.accel(), rays, ReplayMode::Packet8, 1).queries, 3u);
+    EXPECT_EQ(replayRays(scene.accel(), rays, ReplayMode::Stream, 1).queries, 3u);
+    EXPECT_EQ(replayRays(scene.accel(), rays, ReplayMode::Single, 1).queries, rays.size());
+}
+
 TEST(EmbreeAccel, ReplayModesAgreeOnARecordedFrame) {
     // Packets and streams group consecutive rays of one kind; every grouping
     // must find the same hits as tracing them one by one.

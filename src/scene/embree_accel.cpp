@@ -82,8 +82,8 @@ EmbreeAccel::~EmbreeAccel() {
     if (device_) rtcReleaseDevice(device_);
 }
 
-void RayRecorder::record(const Vec3f& o, const Vec3f& d, float tMax, bool shadow) {
-    perThread_.local().push_back({o, d, tMax, shadow});
+void RayRecorder::record(const Vec3f& o, const Vec3f& d, float tMax, bool shadow, bool coherent) {
+    perThread_.local().push_back({o, d, tMax, shadow, coherent});
 }
 
 std::vector<RecordedRay> RayRecorder::gather() const {
@@ -93,7 +93,7 @@ std::vector<RecordedRay> RayRecorder::gather() const {
 }
 
 bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
-    if (recorder_) recorder_->record(o, d, tMax, false);
+    if (recorder_) recorder_->record(o, d, tMax, false, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -118,7 +118,7 @@ bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
 }
 
 bool EmbreeAccel::occluded(Vec3f o, Vec3f d, float tMax) const {
-    if (recorder_) recorder_->record(o, d, tMax, true);
+    if (recorder_) recorder_->record(o, d, tMax, true, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray;
@@ -170,12 +170,14 @@ void setPacketLanes(const RayLanes& rays, Ray8& ray, int* valid) {
 
 // A packet's active lanes to the recorder, if there is one.
 template <typename Ray8>
-void recordLanes(RayRecorder* recorder, const Ray8& ray, const int* valid, bool shadow) {
+void recordLanes(RayRecorder* recorder, const Ray8& ray, const int* valid, bool shadow,
+                 bool coherent) {
     if (!recorder) return;
     for (int k = 0; k < kPacketWidth; ++k)
         if (valid[k])
             recorder->record({ray.org_x[k], ray.org_y[k], ray.org_z[k]},
-                             {ray.dir_x[k], ray.dir_y[k], ray.dir_z[k]}, ray.tfar[k], shadow);
+                             {ray.dir_x[k], ray.dir_y[k], ray.dir_z[k]}, ray.tfar[k], shadow,
+                             coherent);
 }
 
 }  // namespace
@@ -206,7 +208,7 @@ void EmbreeAccel::intersect8(RTCRayHit8& rh, const int* valid, int count,
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
-    recordLanes(recorder_, rh.ray, valid, false);
+    recordLanes(recorder_, rh.ray, valid, false, flags == RTC_INTERSECT_CONTEXT_FLAG_COHERENT);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = flags;
@@ -234,7 +236,7 @@ void EmbreeAccel::occludedLanes(const RayLanes& rays, bool* blocked) const {
     alignas(32) int valid[kPacketWidth];
     alignas(32) RTCRay8 ray;
     setPacketLanes(rays, ray, valid);
-    recordLanes(recorder_, ray, valid, true);
+    recordLanes(recorder_, ray, valid, true, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded8(valid, scene_, &context, &ray);

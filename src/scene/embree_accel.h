@@ -24,11 +24,14 @@ struct RayHit {
     float u, v;  // barycentrics of vertices 1 and 2 (triangles)
 };
 
-// A ray as the renderer asked for it: closest hit, or any hit (shadow ray).
+// A ray as the renderer asked for it: closest hit, or any hit (shadow ray);
+// coherent: traced in a packet Embree was told is coherent (a pixel's camera
+// rays), which Embree traverses differently — a replay must tell it too.
 struct RecordedRay {
     Vec3f o, d;
     float tMax;
     bool shadow;
+    bool coherent = false;
 };
 
 // Collects every query made while attached to an accelerator, per thread
@@ -39,7 +42,7 @@ class RayRecorder {
     // the query functions spill them and reload them across two stores (a
     // store-forwarding stall on every ray, recording or not).
     [[gnu::cold, gnu::noinline]] void record(const Vec3f& o, const Vec3f& d, float tMax,
-                                             bool shadow);
+                                             bool shadow, bool coherent);
     std::vector<RecordedRay> gather() const;
 
   private:
