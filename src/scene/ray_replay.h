@@ -31,7 +31,9 @@ struct ReplayResult {
 
 // Traces every ray once; `threads` 0 means all cores. Consecutive rays of the
 // same kind (closest hit, coherent closest hit, shadow) form the packets and
-// streams, as the renderer produced them.
+// streams, as the renderer produced them. The rays are put in Embree's own
+// structures before the clock starts: `seconds` is the time of Embree's calls
+// and of the loop that makes them, nothing else.
 ReplayResult replayRays(const EmbreeAccel& accel, const std::vector<RecordedRay>& rays,
                         ReplayMode mode, int threads);
 
