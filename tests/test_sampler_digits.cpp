@@ -259,6 +259,36 @@ TEST(HaltonDigits, LaneKernelsMatchTheScalarScramblers) {
     }
 }
 
+TEST(HaltonDigits, OwenTwoDimensionDrawsMatchTheScalarScrambler) {
+    // The 2D lane draw on every pair of adjacent dimensions (as the samplers
+    // draw them), in both orders — either may have more digits, and some
+    // pairs straddle a change of table kind (bases 31/37, 61/67, 127/131,
+    // 251/257) — on every instruction set and lane count.
+    const std::vector<uint64_t> indices = haltonLaneIndices();
+    const std::vector<SimdLevel> levels = haltonLaneLevels();
+    const auto perms = haltonDigitPermutations(3);
+    const auto& dims = perms->dimensions;
+    for (size_t d = 0; d + 1 < dims.size(); ++d) {
+        for (size_t i = 0; i < indices.size(); i += kCameraPacketSamples) {
+            const uint64_t* a = indices.data() + i;
+            const int count = 1 + int(i / kCameraPacketSamples) % kCameraPacketSamples;
+            for (SimdLevel level : levels) {
+                for (const auto& [tx, ty] :
+                     {std::pair{&dims[d], &dims[d + 1]}, std::pair{&dims[d + 1], &dims[d]}}) {
+                    float x[kCameraPacketSamples], y[kCameraPacketSamples];
+                    owenScrambledLanes2D(*tx, *ty, a, count, x, y, level);
+                    for (int j = 0; j < count; ++j) {
+                        ASSERT_EQ(bits(x[j]), bits(owenScrambled(*tx, a[j])))
+                            << "bases " << tx->base << ", " << ty->base << " level " << int(level);
+                        ASSERT_EQ(bits(y[j]), bits(owenScrambled(*ty, a[j])))
+                            << "bases " << tx->base << ", " << ty->base << " level " << int(level);
+                    }
+                }
+            }
+        }
+    }
+}
+
 TEST(HaltonDigits, PlainLaneKernelMatchesTheScalarRadicalInverse) {
     // `halton`'s lane kernel on every tabulated dimension's base, every
     // instruction set and every live-lane count: lanes of one call have
