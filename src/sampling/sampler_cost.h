@@ -26,9 +26,6 @@ constexpr int dimensionsPerPath(int depth) {
     return 2 + 4 * depth + std::max(0, depth - kCostRouletteDepth);
 }
 
-// Samples firstIndex … firstIndex + count − 1 of `pixel` (count ≤
-// kBatchSamples), each a path of `depth` vertices; returns the sum of the
-// values so the work cannot be optimised away.
 // The sample indices of the group of up to kCameraPacketSamples samples that
 // starts k0 samples into the batch; returns how many there are.
 inline int groupIndices(int firstIndex, int count, int k0, int* indices) {
@@ -37,6 +34,9 @@ inline int groupIndices(int firstIndex, int count, int k0, int* indices) {
     return lanes;
 }
 
+// Samples firstIndex … firstIndex + count − 1 of `pixel` (count ≤
+// kBatchSamples), each a path of `depth` vertices; returns the sum of the
+// values so the work cannot be optimised away.
 template <typename S>
 float drawBatchDimensions(S& s, Vec2i pixel, int firstIndex, int count, int depth) {
     float acc = 0;
