@@ -16,7 +16,7 @@ setup:
 # Profile-guided optimisation (PGO=0 turns it off): an instrumented pathlab is
 # built in $(PGO_BUILD) and trained (scripts/pgo-train.sh) whenever a source
 # changed, then the release build compiles with the profiles in $(PGO_DATA).
-# Same images, about 12% less time per frame (README, Performance).
+# Same images, about 10% less time per frame (docs/performance.md).
 PGO ?= 1
 PGO_BUILD := build/pgo-generate
 PGO_DATA := $(abspath build/pgo-data)
