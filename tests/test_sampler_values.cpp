@@ -59,6 +59,23 @@ TEST(SamplerValues, StandardLaneValuesAreTheDistributionsFloats) {
     for (int i = 0; i < 200000; ++i) expectSame(1 + rng() % uint32_t(m - 1));
 }
 
+TEST(SamplerValues, StandardSeedStatesAreTheHashModuloTheStateCount) {
+    // The division-free x mod (2^31 − 2) that picks a sample's seed state,
+    // against `%`: around every multiple of the modulus and of 2^30 up to
+    // 2^64, and on random 64-bit hashes.
+    constexpr uint64_t n = 2147483646;
+    auto expectSame = [](uint64_t x) {
+        ASSERT_EQ(StandardSampler::moduloStateCount(x), x % n) << "x = " << x;
+    };
+    for (uint64_t x = 0; x < 5000; ++x) expectSame(x);
+    for (uint64_t k = 1; k < 64; ++k)
+        for (uint64_t base : {uint64_t(1) << k, n * ((uint64_t(1) << k) / n)})
+            for (uint64_t d = 0; d < 8; ++d) expectSame(base + d), expectSame(base - d);
+    for (uint64_t d = 0; d < 5000; ++d) expectSame(~uint64_t(0) - d);
+    std::mt19937_64 rng(9);
+    for (int i = 0; i < 1000000; ++i) expectSame(rng());
+}
+
 TEST(SamplerValues, HaltonPixelDimensionsAreRadicalInversesInBases2And3) {
     const auto pts = drawPoints("halton", 200, 0, 1);
     for (int i = 0; i < 200; ++i) {
@@ -430,6 +447,55 @@ TEST(SamplerValues, LaneDrawsEqualPerSampleDraws) {
                 },
                 lanes);
         }
+    }
+}
+
+TEST(SamplerValues, LaneDrawsLeavePerSampleDrawsIntact) {
+    // One sampler drawing lanes and single samples in turn, as the batched
+    // integrator does (lane draws for a group's Lambertian vertices, single
+    // draws for the others, of the same samples): every value still equals a
+    // fresh draw. Single draws often continue the sample a lane draw began
+    // or ended with, a dimension further on, where samplers that keep a
+    // per-sample position step on from it instead of starting over.
+    for (const std::string& name : allSamplerNames()) {
+        const SamplerConfig config{64, 3, {32, 16}};
+        AnySampler mixed = makeSampler(name, config), fresh = makeSampler(name, config);
+        std::mt19937 rng(11);
+        std::visit(
+            [&](auto& a) {
+                auto& b = std::get<std::decay_t<decltype(a)>>(fresh);
+                auto expected = [&](Vec2i p, int index, int dim) {
+                    b.startPixelSample(p, index, dim);
+                    return b.get2D();
+                };
+                auto same = [](Vec2f u, Vec2f v) { return u.x == v.x && u.y == v.y; };
+                for (int round = 0; round < 400; ++round) {
+                    const Vec2i pixel{int(rng() % 2), 4};
+                    int indices[kCameraPacketSamples], count = 0;
+                    const int first = int(rng() % 8) * 8;
+                    for (int k = 0; k < kCameraPacketSamples; ++k)
+                        if (rng() % 3 != 0) indices[count++] = first + k;
+                    if (count == 0) continue;
+                    const int dim = dims::bounceBase(int(rng() % 6)) + 1;
+                    Vec2f lanes[kCameraPacketSamples];
+                    drawLanes2D(a, pixel, indices, count, dim, lanes);
+                    for (int j = 0; j < count; ++j)
+                        ASSERT_TRUE(same(lanes[j], expected(pixel, indices[j], dim))) << name;
+                    // The first or last lane's sample, or another, further on.
+                    const int pick = int(rng() % 3);
+                    const int index = pick == 0   ? indices[0]
+                                      : pick == 1 ? indices[count - 1]
+                                                  : int(rng() % 64);
+                    const int later = dim + 2 + int(rng() % 3);
+                    a.startPixelSample(pixel, index, later);
+                    const Vec2f u = a.get2D(), v = a.get2D();
+                    ASSERT_TRUE(same(u, expected(pixel, index, later)))
+                        << name << " round " << round;
+                    ASSERT_TRUE(same(v, expected(pixel, index, later + 2)))
+                        << name << " round " << round;
+                }
+            },
+            mixed);
     }
 }
 

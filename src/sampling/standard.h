@@ -54,13 +54,15 @@ class StandardSampler {
     // stepping it lane after lane (a chain of dependent multiplies), reduced
     // by the Mersenne fold (mersenneMod) and turned into the distribution's
     // float by canonicalFloat — the same values (tested). They leave the
-    // sampler where the last lane's per-sample draw would.
+    // per-sample engine and its position as they were (they read only the
+    // seed states), so startPixelSample's step-on path stays valid; they used
+    // to re-seed the engine at the last lane, a modulo per call that the
+    // profile-guided build compiled as a division.
     void get1DLanes(Vec2i p, const int* indices, int count, int dim, float* out) {
         uint64_t states[kCameraPacketSamples];
         for (int j = 0; j < count; ++j) states[j] = seedState(p, indices[j]);
         const uint64_t power = multiplierPower(dim + 1);
         for (int j = 0; j < count; ++j) out[j] = laneValue(states[j], power);
-        finishLanes(p, indices, count, dim + 1);
     }
     void get2DLanes(Vec2i p, const int* indices, int count, int dim, Vec2f* out) {
         uint64_t states[kCameraPacketSamples];
@@ -68,10 +70,25 @@ class StandardSampler {
         const uint64_t powerX = multiplierPower(dim + 1), powerY = multiplierPower(dim + 2);
         for (int j = 0; j < count; ++j)
             out[j] = {laneValue(states[j], powerX), laneValue(states[j], powerY)};
-        finishLanes(p, indices, count, dim + 2);
     }
     void getPixel2DLanes(Vec2i p, const int* indices, int count, Vec2f* out) {
         get2DLanes(p, indices, count, dims::kPixel, out);
+    }
+
+    // x mod (2^31 − 2), the number of valid states, without a division: the
+    // profile-guided build compiled `%` by this constant on a path it deems
+    // cold (a sample's first draw) as a 64-bit division. 2^31 − 2 =
+    // 2·(2^30 − 1), so x mod it is 2·(⌊x/2⌋ mod (2^30 − 1)) + (x mod 2), and
+    // modulo the Mersenne number 2^30 − 1 a number is congruent to the sum
+    // of its 30-bit chunks (2^30 ≡ 1): two folds take ⌊x/2⌋ < 2^63 to at
+    // most 2^30 + 8, and one subtraction below 2^30 − 1.
+    static uint64_t moduloStateCount(uint64_t x) {
+        constexpr uint64_t kChunk = (uint64_t(1) << 30) - 1;
+        uint64_t y = x >> 1;
+        y = (y & kChunk) + (y >> 30);  // < 2^30 + 2^33
+        y = (y & kChunk) + (y >> 30);  // ≤ 2^30 − 1 + 9
+        if (y >= kChunk) y -= kChunk;
+        return 2 * y + (x & 1);
     }
 
     // What distribution_ makes of the engine output x, clamped as get1D
@@ -102,9 +119,6 @@ class StandardSampler {
     static float laneValue(uint64_t state, uint64_t power) {
         return canonicalFloat(mersenneMod(state * power));
     }
-    void finishLanes(Vec2i p, const int* indices, int count, int nextDimension) {
-        if (count > 0) reseed(p, indices[count - 1], nextDimension);
-    }
     // The engine at dimension `dim` of the sample, seeded afresh.
     void reseed(Vec2i p, int index, int dim) {
         pixel_ = p, index_ = index, position_ = dim;
@@ -122,7 +136,7 @@ class StandardSampler {
     uint64_t seedState(Vec2i p, int index) {
         RecentSample& recent = recent_[size_t(index) % recent_.size()];
         if (recent.index != index || recent.pixel.x != p.x || recent.pixel.y != p.y)
-            recent = {p, index, 1 + hashValues(p.x, p.y, index, seed_) % 2147483646u};
+            recent = {p, index, 1 + moduloStateCount(hashValues(p.x, p.y, index, seed_))};
         return recent.state;
     }
     struct RecentSample {
