@@ -62,7 +62,7 @@ bench: build
 # for FUZZ_SECONDS; fails when any target finds a crash.
 FUZZ_SECONDS ?= 60
 FUZZ_BUILD := build/fuzz
-FUZZ_TARGETS := json_scene study_spec obj_mtl image
+FUZZ_TARGETS := json_scene study_spec obj_mtl image ply pbrt
 
 $(FUZZ_BUILD)/build.ninja: CMakeLists.txt
 	@CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) -G Ninja \

@@ -33,8 +33,8 @@ world=$(cd "$(dirname "$0")/pbrt" && pwd)/cornell-box.pbrt
 mkdir -p "$out"
 trap 'rm -f "$out"/*.part.pfm' EXIT  # an interrupted render leaves no file behind
 
-# pbrt-v4's camera space is left-handed: Scale −1 1 1 keeps the red wall on
-# the right, as in pathlab's image.
+# pbrt-v4's camera space is left-handed: Scale −1 1 1 puts world +x, and so
+# the red wall, on the image's left, as in pathlab's image.
 scene() {  # SAMPLER → scene file
     local file="$out/$1.pbrt"
     cat >"$file" <<EOF

@@ -8,6 +8,9 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenexr-dev libpng-dev libtinyobjloader-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libsqlite3-dev libboost-dev
   libgtest-dev libbenchmark-dev
+  # pbrt-v4 scenes: Loop subdivision through OpenSubdiv; assimp only for the PLY
+  # benchmark that measures it beside pathlab's own reader (docs/pbrt-format.md).
+  libassimp-dev libosd-dev
   # The wolf scene, when it must be fetched from Debian's 0ad-data package.
   libarchive-tools
   # The report: figures with matplotlib; its test drives Chromium from Node.
@@ -15,6 +18,8 @@ PACKAGES=(
   # Test data: the Cornell boxes Embree's tutorials and tinyobjloader ship,
   # which the scene tests read (they skip where these are missing).
   embree-tools python3-tinyobjloader
+  # Public PLY models (ASCII, binary, quads, points only) for the PLY tests.
+  assimp-testmodels
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi

@@ -83,6 +83,32 @@ const BadInput kCases[] = {
      "out.png",
      "{dir}/negative-texture.json: materials.m.texture: texture '{dir}/negative-texel.pfm' has a "
      "negative texel at (2, 1)"},
+    {"pbrt: unknown directive", "render --scene {dir}/unknown-directive.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/unknown-directive.pbrt:2:1: unknown directive 'Shpe'"},
+    {"pbrt: unterminated string", "render --scene {dir}/unterminated.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/unterminated.pbrt:2:7: unterminated string"},
+    {"pbrt: wrong parameter type", "render --scene {dir}/wrong-type.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/wrong-type.pbrt:1:22: parameter 'fov' must be of type float, not string"},
+    {"pbrt: missing Include", "render --scene {dir}/missing-include.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/missing-include.pbrt:2:1: file '{dir}/nothere.pbrt' does not exist"},
+    {"pbrt: missing PLY", "render --scene {dir}/missing-ply.pbrt -o {dir}/out.png", "out.png",
+     "{dir}/missing-ply.pbrt:2:1: file 'nothere.ply' does not exist (looked in '{dir}')"},
+    {"pbrt: truncated PLY", "render --scene {dir}/truncated-ply.pbrt -o {dir}/out.png", "out.png",
+     "TRUNCATED-PLY"},
+    {"pbrt: index out of range", "render --scene {dir}/bad-index.pbrt -o {dir}/out.png", "out.png",
+     "{dir}/bad-index.pbrt:2:1: trianglemesh: index 7 (entry 2) is out of range (3 vertices)"},
+    {"pbrt: undefined named material", "render --scene {dir}/no-material.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/no-material.pbrt:2:1: NamedMaterial: no material named 'gold'"},
+    {"pbrt: undefined object", "render --scene {dir}/no-object.pbrt -o {dir}/out.png", "out.png",
+     "{dir}/no-object.pbrt:2:1: ObjectInstance: no object named 'tree'"},
+    {"pbrt: undefined coordinate system", "render --scene {dir}/no-coordsys.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/no-coordsys.pbrt:2:1: CoordSysTransform: no coordinate system named 'lamp'"},
+    {"pbrt: unbalanced AttributeEnd", "render --scene {dir}/unbalanced.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/unbalanced.pbrt:2:1: unbalanced AttributeEnd: no AttributeBegin is open"},
+    {"pbrt: unsupported feature", "render --scene {dir}/unsupported.pbrt -o {dir}/out.png",
+     "out.png",
+     "{dir}/unsupported.pbrt:2:1: material 'coateddiffuse' (or these parameters of it) is not "
+     "supported (--lenient substitutes diffuse grey)"},
     {"output directory missing", "render --scene cornell-box -o {dir}/no/such/out.png", "",
      "cannot write '{dir}/no/such/out.png': directory '{dir}/no/such' does not exist"},
     {"output under a file", "render --scene cornell-box -o {dir}/a.exr/out.png", "",
@@ -225,6 +251,25 @@ class BadInputTable : public ::testing::Test {
         badFov.replace(badFov.find("\"fovY\": 40"), 10, "\"fovY\": 0");
         put("bad-fov.json", badFov);
         put("bad-scene.toml", "scenes = [\"bad-fov.json\"]\nsamplers = [\"halton\"]\nspp = [1]\n");
+        const std::string tri = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]";
+        put("unknown-directive.pbrt", "WorldBegin\nShpe \"sphere\"\n");
+        put("unterminated.pbrt", "WorldBegin\nShape \"sphere\n");
+        put("wrong-type.pbrt", "Camera \"perspective\" \"string fov\" \"wide\"\nWorldBegin\n");
+        put("missing-include.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n");
+        put("missing-ply.pbrt",
+            "WorldBegin\nShape \"plymesh\" \"string filename\" \"nothere.ply\"\n");
+        put("truncated.ply",
+            "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+            "property float y\nproperty float z\nelement face 1\n"
+            "property list uchar int vertex_indices\nend_header\n\x01\x02");
+        put("truncated-ply.pbrt",
+            "WorldBegin\nShape \"plymesh\" \"string filename\" \"truncated.ply\"\n");
+        put("bad-index.pbrt", "WorldBegin\n" + tri + " \"integer indices\" [0 1 7]\n");
+        put("no-material.pbrt", "WorldBegin\nNamedMaterial \"gold\"\n" + tri + "\n");
+        put("no-object.pbrt", "WorldBegin\nObjectInstance \"tree\"\n");
+        put("no-coordsys.pbrt", "WorldBegin\nCoordSysTransform \"lamp\"\n");
+        put("unbalanced.pbrt", "WorldBegin\nAttributeEnd\n");
+        put("unsupported.pbrt", "WorldBegin\nMaterial \"coateddiffuse\"\n" + tri + "\n");
     }
 
     void SetUp() override {
@@ -276,10 +321,11 @@ TEST_F(BadInputTable, OneLineExitCodeTwoNothingWrittenNothingLost) {
         {"JUNK", "cannot read EXR '" + d + "/junk.exr': "},
         {"SPEC-SAMPLER", d + "/unknown-sampler.toml:2: key 'samplers[1]' names an unknown "
                              "sampler 'nope' (known: "},
+        {"TRUNCATED-PLY", d + "/truncated-ply.pbrt:2:1: "},
     };
     const std::map<std::string, std::string> mentions = {
         {"SAMPLER", "halton"}, {"SIZES", "8x6"},         {"NAN", "NaN"},
-        {"JUNK", "junk.exr"},  {"SPEC-SAMPLER", "nope"},
+        {"JUNK", "junk.exr"},  {"SPEC-SAMPLER", "nope"}, {"TRUNCATED-PLY", "truncated.ply"},
     };
     for (const BadInput& c : kCases) {
         SCOPED_TRACE(c.input);

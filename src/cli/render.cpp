@@ -25,7 +25,20 @@ struct RenderOptions {
     int64_t spp = 16, maxDepth = 8, rouletteDepth = kDefaultRouletteDepth;
     bool noRoulette = false;
     bool solidAngleLights = false;
+    bool lenient = false;
+    // Given on the command line? Otherwise a scene file's own choice (pbrt-v4's
+    // Sampler and Integrator directives) applies.
+    const CLI::Option *samplerGiven = nullptr, *sppGiven = nullptr, *seedGiven = nullptr,
+                      *depthGiven = nullptr;
 };
+
+// The scene file's sampler, spp, seed and depth where the command line is silent.
+void applySceneDefaults(RenderOptions& o, const RenderDefaults& d) {
+    if (!d.sampler.empty() && o.samplerGiven->count() == 0) o.settings.sampler = d.sampler;
+    if (d.samplesPerPixel > 0 && o.sppGiven->count() == 0) o.spp = d.samplesPerPixel;
+    if (d.hasSeed && o.seedGiven->count() == 0) o.seed = std::to_string(d.seed);
+    if (d.maxDepth >= 0 && o.depthGiven->count() == 0) o.maxDepth = d.maxDepth;
+}
 
 // A decimal count, saturated: "99999999999999999999" is simply very large.
 int64_t parseCount(const std::string& digits) {
@@ -54,7 +67,8 @@ int checkedInt(int64_t v, int64_t lo, int64_t hi, const std::string& what) {
     return int(v);
 }
 
-void runRender(RenderOptions& o) {
+// The settings from the options' values, validated.
+void settle(RenderOptions& o) {
     RenderSettings& s = o.settings;
     s.russianRoulette = !o.noRoulette;
     s.samplesPerPixel = checkedInt(o.spp, 1, kMaxSamplesPerPixel, "--spp");
@@ -63,9 +77,17 @@ void runRender(RenderOptions& o) {
     s.seed = parseSeed(o.seed);
     if (!o.size.empty()) s.resolution = parseSize(o.size);
     validateRenderSettings(s);
-    checkWritable(o.output);  // fail before rendering, not after
+}
+
+void runRender(RenderOptions& o) {
+    settle(o);                // the command line's own mistakes first,
+    checkWritable(o.output);  // then the output's, before loading and rendering
+    SceneDescription desc = loadScene(o.scene, {o.lenient});
+    applySceneDefaults(o, desc.defaults);
+    settle(o);
+    RenderSettings& s = o.settings;
     s.progress = true;
-    const RenderScene scene(loadScene(o.scene),
+    const RenderScene scene(std::move(desc),
                             o.solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
     const RenderOutput out = render(scene, s);
     writeImage(o.output, out.image);
@@ -84,16 +106,26 @@ void runRender(RenderOptions& o) {
 void addRenderCommand(CLI::App& app) {
     auto opts = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render one image of a scene");
-    cmd->add_option("--scene", opts->scene, "cornell-box, wolf, or a scene file (.json/.obj)")
+    cmd->add_option("--scene", opts->scene, "cornell-box, wolf, or a scene file (.json/.obj/.pbrt)")
         ->required();
-    cmd->add_option("--sampler", opts->settings.sampler, "Sampler name (see `pathlab samplers`)")
-        ->capture_default_str();
-    cmd->add_option("--spp", opts->spp, "Samples per pixel")->capture_default_str();
-    cmd->add_option("--seed", opts->seed, "Seed of the sampler's randomisation")
-        ->capture_default_str();
+    opts->samplerGiven = cmd->add_option("--sampler", opts->settings.sampler,
+                                         "Sampler name (see `pathlab samplers`; default: the "
+                                         "scene file's, else independent)")
+                             ->capture_default_str();
+    opts->sppGiven = cmd->add_option("--spp", opts->spp,
+                                     "Samples per pixel (default: the scene "
+                                     "file's, else 16)")
+                         ->capture_default_str();
+    opts->seedGiven = cmd->add_option("--seed", opts->seed, "Seed of the sampler's randomisation")
+                          ->capture_default_str();
     cmd->add_option("--size", opts->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-    cmd->add_option("--max-depth", opts->maxDepth, "Maximum path depth (1 = direct lighting only)")
-        ->capture_default_str();
+    opts->depthGiven = cmd->add_option("--max-depth", opts->maxDepth,
+                                       "Maximum path depth (1 = direct lighting only; default: "
+                                       "the scene file's, else 8)")
+                           ->capture_default_str();
+    cmd->add_flag("--lenient", opts->lenient,
+                  "pbrt-v4 files: substitute unsupported features (with a warning each) "
+                  "instead of stopping");
     cmd->add_flag("--no-russian-roulette", opts->noRoulette, "Disable Russian roulette");
     cmd->add_option("--roulette-depth", opts->rouletteDepth,
                     "Bounces before Russian roulette may end a path (pbrt-v4: 2, Mitsuba 3: 4)")

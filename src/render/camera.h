@@ -1,7 +1,8 @@
 // A pinhole camera. Image x runs to the right, y downwards (row 0 is the top).
 // Image right is normalize(cross(forward, up)): with forward +z and up +y that
 // is −x, so the Cornell box's red wall (x ≈ 550) appears on the left as in the
-// classic photograph.
+// classic photograph. (pbrt-v4 scenes' cameras, with their lens and
+// orthographic projection: camera_model.h.)
 #pragma once
 
 #include <cmath>

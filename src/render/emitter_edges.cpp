@@ -4,22 +4,24 @@
 
 #include <stdexcept>
 
-#include "render/camera.h"
+#include "render/camera_model.h"
+#include "render/film.h"
 
 namespace pathlab {
 namespace {
 
-bool seesEmitter(const RenderScene& scene, const PinholeCamera& camera, float x, float y) {
-    const Vec3f d = camera.direction(x, y);
+// Through the lens centre: the ray a pinhole at the lens would trace.
+bool seesEmitter(const RenderScene& scene, const CameraModel& camera, float x, float y) {
+    const CameraRay r = camera.centralRay({x, y});
     SurfaceInteraction si;
-    if (!scene.intersect(camera.eye(), d, &si) || si.light < 0) return false;
-    return !isBlack(scene.lights().areaLight(si.light).emitted(-d));
+    if (!scene.intersect(r.origin, r.direction, &si) || si.light < 0) return false;
+    return !isBlack(scene.lights().areaLight(si.light).emitted(-r.direction));
 }
 
 // Probes along `lines` straight lines of the film, `count` points each:
 // probe(line, k) gives the film position of point k of that line.
 template <class Position>
-std::vector<uint8_t> probeLines(const RenderScene& scene, const PinholeCamera& camera, int lines,
+std::vector<uint8_t> probeLines(const RenderScene& scene, const CameraModel& camera, int lines,
                                 int count, Position position) {
     std::vector<uint8_t> hit(size_t(lines) * size_t(count));
     tbb::parallel_for(0, lines, [&](int line) {
@@ -36,18 +38,22 @@ std::vector<uint8_t> probeLines(const RenderScene& scene, const PinholeCamera& c
 std::vector<uint8_t> emitterEdgePixels(const RenderScene& scene, Vec2i resolution, int perSide) {
     if (resolution.x <= 0 || resolution.y <= 0 || perSide <= 0)
         throw std::invalid_argument("emitterEdgePixels: empty image or no probes");
-    const int w = resolution.x, h = resolution.y, n = perSide;
-    const PinholeCamera camera(scene.description().camera, resolution);
+    // The pixels the render produces: the film's crop of the full image.
+    const PixelBounds bounds = filmPixelBounds(scene.description().film, resolution);
+    const int w = bounds.width(), h = bounds.height(), n = perSide;
+    const int x0 = bounds.min.x, y0 = bounds.min.y;
+    const CameraModel camera(scene.description().camera, resolution);
     const float step = 1.0f / float(n);
-    // Vertical lines x = 0 … w, horizontal lines y = 0 … h, pixel centres.
+    // Vertical lines x = 0 … w, horizontal lines y = 0 … h, pixel centres
+    // (of the image; + x0, y0 on the full film).
     const auto vertical = probeLines(scene, camera, w + 1, h * n, [&](int x, int k) {
-        return Vec2f{float(x), (float(k) + 0.5f) * step};
+        return Vec2f{float(x0 + x), float(y0) + (float(k) + 0.5f) * step};
     });
     const auto horizontal = probeLines(scene, camera, h + 1, w * n, [&](int y, int k) {
-        return Vec2f{(float(k) + 0.5f) * step, float(y)};
+        return Vec2f{float(x0) + (float(k) + 0.5f) * step, float(y0 + y)};
     });
     const auto centre = probeLines(scene, camera, h, w, [&](int y, int x) {
-        return Vec2f{float(x) + 0.5f, float(y) + 0.5f};
+        return Vec2f{float(x0 + x) + 0.5f, float(y0 + y) + 0.5f};
     });
     std::vector<uint8_t> edge(size_t(w) * size_t(h), 0);
     for (int y = 0; y < h; ++y) {

@@ -17,7 +17,9 @@
 namespace pathlab {
 
 // A mask of the image (row-major, 1 = edge pixel) as seen through the scene's
-// camera at `resolution`. A camera ray "sees an emitter" when its first hit is
+// camera at `resolution` — the image a render at that resolution produces:
+// the film's crop of it when the scene has a crop window. A camera with a
+// thin lens is probed through the lens centre. A camera ray "sees an emitter" when its first hit is
 // an area light whose emission faces it. Each pixel is probed on its outline,
 // `perSide` equally spaced points per side (shared with its neighbours), and at
 // its centre; it is an edge pixel when the probes disagree. An outline that

@@ -3,6 +3,8 @@
 // default roulette depth from here.
 #pragma once
 
+#include "sampling/sampler.h"
+
 namespace pathlab {
 
 // Bounces before roulette may end a path. 2 is pbrt-v4's rule (depth > 1);
@@ -19,6 +21,9 @@ struct IntegratorSettings {
     // (estimateRadianceBatch): the same image, bit for bit, in less time. Off
     // only to compare the two.
     bool batchPaths = true;
+    // The first dimension of path vertex 0's block (dims::firstBounce): 2, or
+    // 4 when the camera's thin lens draws dimensions 2 and 3.
+    int firstBounce = dims::kFirstBounce;
 };
 
 }  // namespace pathlab

@@ -5,8 +5,9 @@
 //
 // Every random number comes from the sampler, in the fixed layout of
 // sampling/sampler.h: vertex `depth` owns the block of dimensions starting at
-// dims::bounceBase(depth), so a bounce's dimensions never depend on what earlier
-// bounces drew. A vertex draws only the dimensions it uses (no light choice with
+// dims::bounceBase(depth, settings.firstBounce) — after the pixel's, and the
+// lens's when the camera has one — so a bounce's dimensions never depend on
+// what earlier bounces drew. A vertex draws only the dimensions it uses (no light choice with
 // one light, no lobe choice off glass, no light sample at a specular vertex, no
 // roulette before it starts) and skips the others: a sampler's value is a pure
 // function of (pixel, index, dimension, seed), so skipping changes no value that
@@ -36,11 +37,12 @@ struct PathCounters {
 template <Sampler S>
 class VertexDimensions {
   public:
-    VertexDimensions(S& sampler, Vec2i pixel, int sampleIndex, int depth, PathCounters& counters)
+    VertexDimensions(S& sampler, Vec2i pixel, int sampleIndex, int depth, PathCounters& counters,
+                     int firstBounce = dims::kFirstBounce)
         : sampler_(sampler),
           pixel_(pixel),
           index_(sampleIndex),
-          base_(dims::bounceBase(depth)),
+          base_(dims::bounceBase(depth, firstBounce)),
           counters_(counters) {}
     float get1D(int offset) {
         seek(offset, 1);
@@ -185,7 +187,8 @@ VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
 // The radiance arriving along a path whose first segment (origin → first
 // surface, or escape when !found) has already been traced: the camera rays of
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
-// here one at a time. (The renderer traces batches, estimateRadianceBatch;
+// here one at a time. (`origin` is the camera ray's own: the eye, or its point
+// on the lens or the orthographic screen.) (The renderer traces batches, estimateRadianceBatch;
 // this is the reference it is tested against.)
 template <Sampler S>
 Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
@@ -204,7 +207,8 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
                     prevPoint, prevNormal, L);
         if (!found || depth == settings.maxDepth) break;
 
-        VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
+        VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters,
+                                  settings.firstBounce);
         const VertexShading v = shadeVertex(scene, draws, si, dir);
         if (v.lightSampled)
             L += beta * (v.direct ? traceShadowRay(scene, *v.direct, counters) : Vec3f(0.0f));
@@ -264,9 +268,9 @@ struct BatchPaths {
 // Returns whether the bounce is specular.
 template <Sampler S>
 bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampleIndex, int depth,
-                    const SurfaceInteraction& si, Vec3f dir, int j, DiffuseBatchOutput& out,
-                    PathCounters& counters) {
-    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters);
+                    int firstBounce, const SurfaceInteraction& si, Vec3f dir, int j,
+                    DiffuseBatchOutput& out, PathCounters& counters) {
+    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters, firstBounce);
     const VertexShading v = shadeVertex(scene, draws, si, dir);
     out.shadow[j] = v.direct.has_value();
     if (const auto& d = v.direct) {
@@ -320,7 +324,7 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
     const int lambertian = lambertianFirst(scene, si, groupPaths, live, lane);
     for (int j = 0; j < live; ++j) index[j] = firstIndex + lane[j];
     // The Lambertian paths' dimensions, one dimension for all of them at a time.
-    const int base = dims::bounceBase(depth);
+    const int base = dims::bounceBase(depth, settings.firstBounce);
     float uChoice[kBatchLanes] = {};
     Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
     const bool choice = lights.choiceUsesSample();
@@ -341,8 +345,9 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
     for (int j = 0; j < live; ++j) {
         const int k = lane[j];
         paths.specularBounce[k] =
-            j >= lambertian && shadeLaneAlone(scene, sampler, pixel, index[j], depth, si[k],
-                                              paths.dir[k], j, out, counters);
+            j >= lambertian &&
+            shadeLaneAlone(scene, sampler, pixel, index[j], depth, settings.firstBounce, si[k],
+                           paths.dir[k], j, out, counters);
     }
 
     bool blocked[kBatchLanes];
@@ -403,7 +408,9 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
 // A sampler's values are pure functions of (pixel, index, dimension, seed), so
 // the draws may be made in any order. On entry found[k] and si[k] hold camera
 // ray k's hit; they are the paths' working state, overwritten. L[k] receives
-// path k's radiance.
+// path k's radiance. (The camera rays' origins are not needed: the first
+// vertex's emission depends on the direction only, and later rays start at
+// the vertices.)
 template <Sampler S>
 void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* found,
                            SurfaceInteraction* si, int count, S& sampler, Vec2i pixel,

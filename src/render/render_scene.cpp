@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "render/sphere_hit.h"
+
 namespace pathlab {
 
 RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
@@ -12,23 +14,13 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     const Vec3f lo = accel_->boundsMin(), hi = accel_->boundsMax();
     const float extent = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
                                    std::abs(hi.y), std::abs(hi.z), 1.0f});
-    // Float spacing near the scene's largest coordinate, with a safety factor.
+    // Float spacing near the scene's largest coordinate, with a safety factor
+    // (setupInstances may raise it).
     epsilon_ = extent * 2e-5f;
     lights_ = std::make_unique<LightSet>(desc_, desc_.camera.target, lightSampling);
     triangleNormals_.resize(desc_.meshes.size());
-    for (size_t m = 0; m < desc_.meshes.size(); ++m) {
-        const Mesh& mesh = desc_.meshes[m];
-        auto& normals = triangleNormals_[m];
-        normals.resize(mesh.triangleCount());
-        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-            const Vec3f a = mesh.positions[mesh.indices[3 * t]];
-            const Vec3f b = mesh.positions[mesh.indices[3 * t + 1]];
-            const Vec3f c = mesh.positions[mesh.indices[3 * t + 2]];
-            const Vec3f n = cross(b - a, c - a);
-            const float len = length(n);
-            normals[t] = len > 0 ? n / len : Vec3f(0, 0, 1);
-        }
-    }
+    for (size_t m = 0; m < desc_.meshes.size(); ++m)
+        triangleNormals_[m] = faceNormals(desc_.meshes[m]);
     for (size_t m = 0; m < desc_.meshes.size(); ++m) {
         const Mesh& mesh = desc_.meshes[m];
         meshHits_.push_back({mesh.indices.data(), triangleNormals_[m].data(),
@@ -39,6 +31,20 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     for (const Material& m : desc_.materials)
         lambertian_.push_back(m.type == MaterialType::Diffuse);
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
+    setupInstances();
+}
+
+std::vector<Vec3f> faceNormals(const Mesh& mesh) {
+    std::vector<Vec3f> normals(mesh.triangleCount());
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const Vec3f a = mesh.positions[mesh.indices[3 * t]];
+        const Vec3f b = mesh.positions[mesh.indices[3 * t + 1]];
+        const Vec3f c = mesh.positions[mesh.indices[3 * t + 2]];
+        const Vec3f n = cross(b - a, c - a);
+        const float len = length(n);
+        normals[t] = len > 0 ? n / len : Vec3f(0, 0, 1);
+    }
+    return normals;
 }
 
 bool RenderScene::intersect(Vec3f o, Vec3f d, SurfaceInteraction* si) const {
@@ -70,31 +76,12 @@ void RenderScene::intersectLanes(const RayLanes& rays, const int* to, SurfaceInt
     }
 }
 
-namespace {
-
-// The root of |o + t·d − c|² = r² nearest Embree's t, in double precision.
-// Embree's packet and single-ray sphere tests round t differently; taking the
-// hit point from the ray alone makes a path's vertices independent of how its
-// rays were traced, so the batched integrator's image is the one-at-a-time
-// integrator's bit for bit.
-float sphereHitDistance(Vec3f o, Vec3f d, const Sphere& s, float embreeT) {
-    const double ox = double(o.x) - s.center.x, oy = double(o.y) - s.center.y,
-                 oz = double(o.z) - s.center.z;
-    const double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
-    const double b = ox * d.x + oy * d.y + oz * d.z;  // half the linear term
-    const double c = ox * ox + oy * oy + oz * oz - double(s.radius) * s.radius;
-    const double disc = b * b - a * c;
-    if (disc < 0) return embreeT;  // a grazing hit Embree found and the quadratic misses
-    // The root away from cancellation, and the other as c / (a·t) (Vieta).
-    const double q = -(b + std::copysign(std::sqrt(disc), b));
-    const double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    return float(std::abs(t0 - embreeT) < std::abs(t1 - embreeT) ? t0 : t1);
-}
-
-}  // namespace
-
 void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
                                   SurfaceInteraction* si) const {
+    if (hit.instId != RTC_INVALID_GEOMETRY_ID) [[unlikely]] {
+        fillInstanced(o, d, hit, si);
+        return;
+    }
     si->light = -1;
     if (hit.geomId == accel_->sphereGeometryId()) {
         const Sphere& s = desc_.spheres[hit.primId];

@@ -1,5 +1,8 @@
 // A scene ready to render: the description, its Embree acceleration structure,
 // per-triangle normals and the light set. Immutable and shared by all threads.
+// Instanced objects keep their prototype's data once (object space); a hit
+// inside an instance is carried to world space by that instance's transform
+// (render_instances.cpp).
 #pragma once
 
 #include <memory>
@@ -20,6 +23,10 @@ struct SurfaceInteraction {
     int material = 0;
     int light = -1;  // area light index when the surface emits
 };
+
+// Each triangle's unit geometric normal, (p1−p0)×(p2−p0) normalised; (0, 0, 1)
+// for a degenerate one.
+std::vector<Vec3f> faceNormals(const Mesh& mesh);
 
 class RenderScene {
   public:
@@ -64,6 +71,13 @@ class RenderScene {
 
   private:
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
+    // fillInteraction for a hit inside an instance. Out of line and cold, so
+    // that scenes without instances keep the hit path they had.
+    [[gnu::noinline]] void fillInstanced(Vec3f o, Vec3f d, const RayHit& hit,
+                                         SurfaceInteraction* si) const;
+    // The instances' transforms and their objects' hit data; the ray offset
+    // grown to cover the instances' own float error.
+    void setupInstances();
 
     // What a hit on mesh geomId reads, gathered in one place: one lookup per
     // hit instead of a chain through the description, the normals and the lights.
@@ -76,11 +90,28 @@ class RenderScene {
         int material;
     };
 
+    // What a hit inside instance i needs of its transform M: world to object
+    // for rays (a sphere's quadratic is solved in object space; the hit point
+    // itself comes from the world ray), and the normal matrix M⁻ᵀ, which keeps
+    // normals perpendicular and outward under any non-singular M (mirrors
+    // included: it is what transformMesh and Affine::normal give a flattened
+    // copy).
+    struct InstanceFrame {
+        Affine toObject;
+        float normalMatrix[3][3];
+        int object;
+    };
+
     SceneDescription desc_;
     std::unique_ptr<EmbreeAccel> accel_;
     std::unique_ptr<LightSet> lights_;
     std::vector<std::vector<Vec3f>> triangleNormals_;  // per mesh, per triangle
     std::vector<MeshHitData> meshHits_;                // per mesh
+    std::vector<InstanceFrame> instanceFrames_;        // per ObjectInstance
+    // Per object, per mesh: object-space face normals, and the hit data
+    // (triangleLights null: instanced shapes never emit).
+    std::vector<std::vector<std::vector<Vec3f>>> objectTriangleNormals_;
+    std::vector<std::vector<MeshHitData>> objectMeshHits_;
     float epsilon_ = 1e-4f;
     std::vector<char> lambertian_;  // per material
     bool allLambertian_ = false;

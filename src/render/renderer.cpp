@@ -13,8 +13,11 @@
 #include "core/error.h"
 #include "core/float_mode.h"
 #include "core/thread_annotations.h"
-#include "render/camera.h"
+#include "render/camera_model.h"
+#include "render/camera_samples.h"
+#include "render/film.h"
 #include "render/path_integrator.h"
+#include "render/pixel_filter.h"
 #include "sampling/registry.h"
 
 namespace pathlab {
@@ -45,15 +48,79 @@ struct TileResult {
     std::vector<double> secondsAt;      // per checkpoint, pixel time so far
 };
 
-// Mean and variance of the mean of the first n samples, from running sums.
-void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, Image& image,
+// What every tile shares about the frame: how film positions become rays,
+// which pixels of the full image are rendered, and the film's scale.
+struct FrameSetup {
+    CameraModel camera;
+    FilterSampler filter;
+    PixelBounds bounds;
+    float scale;
+    // A pixel's camera rays all start at one point (a pinhole): Embree traces
+    // them as one coherent packet from it.
+    bool sharedOrigin;
+};
+
+// Throws InputError when the film's crop, filter or scale, or the camera,
+// make no sense.
+FrameSetup makeFrame(const SceneDescription& desc, Vec2i resolution) {
+    if (!(std::isfinite(desc.film.scale) && desc.film.scale > 0))
+        throw InputError("film scale must be positive, got " + std::to_string(desc.film.scale));
+    CameraModel camera(desc.camera, resolution);
+    const bool shared = camera.isPinhole() || camera.projective().sharedOrigin();
+    return FrameSetup{std::move(camera), FilterSampler(desc.film.filter),
+                      filmPixelBounds(desc.film, resolution), desc.film.scale, shared};
+}
+
+// Mean and variance of the mean of the first n samples, from running sums,
+// times the film's scale (variance by its square).
+void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, double scale, Image& image,
                 Image& variance) {
     float mean[3], var[3];
     for (int c = 0; c < 3; ++c) {
-        const double m = sum[c] / n;
-        const double v = n > 1 ? std::max(0.0, (sumSq[c] - n * m * m) / (n - 1)) : 0;
+        double m = sum[c] / n;
+        double v = n > 1 ? std::max(0.0, (sumSq[c] - n * m * m) / (n - 1)) : 0;
+        if (scale != 1) m *= scale, v *= scale * scale;
         mean[c] = float(m);
         var[c] = float(v / n);
+    }
+    image.set(p.x, p.y, Vec3f(mean[0], mean[1], mean[2]));
+    variance.set(p.x, p.y, Vec3f(var[0], var[1], var[2]));
+}
+
+// A pixel's running sums of weighted samples (filters whose weights vary).
+struct WeightedSums {
+    double w = 0, w2 = 0, absW = 0;
+    double wL[3] = {0, 0, 0}, w2L[3] = {0, 0, 0}, w2L2[3] = {0, 0, 0}, absWL[3] = {0, 0, 0};
+    void add(double weight, Vec3f L) {
+        const double ww = weight * weight, a = std::abs(weight);
+        w += weight, w2 += ww, absW += a;
+        for (int c = 0; c < 3; ++c) {
+            wL[c] += weight * L[c], w2L[c] += ww * L[c], w2L2[c] += ww * L[c] * L[c];
+            absWL[c] += a * L[c];
+        }
+    }
+};
+
+// pbrt-v4's RGBFilm pixel, Σ w·L / Σ w, and the variance of that ratio by the
+// delta method — Σ w²(L − μ)² / (Σ w)², the usual estimate for
+// self-normalised importance sampling (Owen, "Monte Carlo theory, methods and
+// examples", 2013, §9.2) — times n/(n − 1), which makes it the plain mean's
+// s²/n when every weight is 1. When the weights cancel exactly (Σ w = 0, as
+// two samples of opposite sign do), the ratio is 0/0 and pbrt-v4 leaves the
+// pixel black; pathlab takes Σ |w|·L / Σ |w| instead, which a scene of
+// constant radiance still returns exactly.
+void writeWeightedPixel(const WeightedSums& s, int n, Vec2i p, double scale, Image& image,
+                        Image& variance) {
+    const bool cancelled = s.w == 0;
+    const double total = cancelled ? s.absW : s.w;
+    float mean[3], var[3];
+    for (int c = 0; c < 3; ++c) {
+        const double m = total != 0 ? (cancelled ? s.absWL[c] : s.wL[c]) / total : 0;
+        const double spread = s.w2L2[c] - 2 * m * s.w2L[c] + m * m * s.w2;
+        const double v =
+            n > 1 && total != 0 ? std::max(0.0, spread) / (total * total) * n / (n - 1) : 0;
+        mean[c] = float(m * scale);
+        var[c] = float(v * scale * scale);
     }
     image.set(p.x, p.y, Vec3f(mean[0], mean[1], mean[2]));
     variance.set(p.x, p.y, Vec3f(var[0], var[1], var[2]));
@@ -62,50 +129,66 @@ void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, Image& i
 using Clock = std::chrono::steady_clock;
 
 // Samples first … first + count − 1 of a pixel (count ≤ kPacketWidth): their
-// positions in the pixel, and their camera rays traced as one packet.
+// camera rays and filter weights (drawCameraSamples), traced as one packet.
 template <Sampler S>
-void traceCameraPacket(const RenderScene& scene, const PinholeCamera& camera, S& sampler,
-                       Vec2i pixel, int first, int count, Vec3f* dirs, SurfaceInteraction* si,
-                       bool* found) {
-    int indices[kPacketWidth];
-    for (int k = 0; k < count; ++k) indices[k] = first + k;
-    Vec2f u[kPacketWidth];
-    drawPixelLanes(sampler, pixel, indices, count, u);
-    for (int k = 0; k < count; ++k)
-        dirs[k] = camera.direction(float(pixel.x) + u[k].x, float(pixel.y) + u[k].y);
-    scene.intersectPacket(camera.eye(), dirs, count, si, found);
+void traceCameraPacket(const RenderScene& scene, const FrameSetup& frame, S& sampler, Vec2i pixel,
+                       int first, int count, Vec3f* origins, Vec3f* dirs, float* weights,
+                       SurfaceInteraction* si, bool* found) {
+    drawCameraSamples(frame.camera, frame.filter, sampler, pixel, first, count, origins, dirs,
+                      weights);
+    if (frame.sharedOrigin) {
+        scene.intersectPacket(origins[0], dirs, count, si, found);
+        return;
+    }
+    // Rays from points of a lens or an orthographic screen: a packet of
+    // rays of any origins (intersectPacket assumes one).
+    float ox[kPacketWidth] = {}, oy[kPacketWidth] = {}, oz[kPacketWidth] = {};
+    float dx[kPacketWidth] = {}, dy[kPacketWidth] = {}, dz[kPacketWidth] = {};
+    int active[kPacketWidth] = {}, to[kPacketWidth];
+    for (int k = 0; k < count; ++k) {
+        ox[k] = origins[k].x, oy[k] = origins[k].y, oz[k] = origins[k].z;
+        dx[k] = dirs[k].x, dy[k] = dirs[k].y, dz[k] = dirs[k].z;
+        active[k] = 1, to[k] = k;
+    }
+    scene.intersectLanes({ox, oy, oz, dx, dy, dz, nullptr, active, count}, to, si, found);
 }
 
-template <Sampler S>
-void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampler, Vec2i pixel,
+// kWeighted: the filter's weights vary (Σ w·L / Σ w); otherwise every weight
+// is 1 and the pixel is the plain mean, summed exactly as it always was.
+template <bool kWeighted, Sampler S>
+void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, Vec2i pixel,
                  const IntegratorSettings& integrator, const Checkpoints& checkpoints,
                  TileResult& result) {
     const int spp = sampler.samplesPerPixel();
     const Clock::time_point start = checkpoints.timed ? Clock::now() : Clock::time_point{};
+    const Vec2i at{pixel.x - frame.bounds.min.x, pixel.y - frame.bounds.min.y};  // in the image
+    const uint64_t cameraDimensions = frame.camera.hasLens() ? 4 : 2;
     double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
+    WeightedSums weighted;
     uint64_t nonFinite = 0;  // this pixel's, so far
     size_t next = 0;         // the next checkpoint
     // The pixel's paths go kBatchSamples at a time, a batch ending at each
     // checkpoint so that its time is the time of its samples; their camera
-    // rays are nearly parallel and are traced as packets.
+    // rays are traced as packets.
     for (int i0 = 0, count; i0 < spp; i0 += count) {
         count = std::min(kBatchSamples, checkpoints.spp[next] - i0);
-        Vec3f dirs[kBatchSamples];
+        Vec3f origins[kBatchSamples], dirs[kBatchSamples];
+        float weights[kBatchSamples];
         SurfaceInteraction first[kBatchSamples];
         bool found[kBatchSamples];
         for (int p0 = 0; p0 < count; p0 += kPacketWidth)
-            traceCameraPacket(scene, camera, sampler, pixel, i0 + p0,
-                              std::min(kPacketWidth, count - p0), dirs + p0, first + p0,
-                              found + p0);
+            traceCameraPacket(scene, frame, sampler, pixel, i0 + p0,
+                              std::min(kPacketWidth, count - p0), origins + p0, dirs + p0,
+                              weights + p0, first + p0, found + p0);
         result.counters.rays += uint64_t(count);
-        result.counters.dimensions += 2 * uint64_t(count);
+        result.counters.dimensions += cameraDimensions * uint64_t(count);
         Vec3f radiance[kBatchSamples];
         if (integrator.batchPaths)
             estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
                                   result.counters, radiance);
         else
             for (int k = 0; k < count; ++k)
-                radiance[k] = estimateRadiance(scene, camera.eye(), dirs[k], found[k], first[k],
+                radiance[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], first[k],
                                                sampler, pixel, i0 + k, integrator, result.counters);
         for (int k = 0; k < count; ++k) {
             Vec3f L = radiance[k];
@@ -113,12 +196,19 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
                 ++nonFinite;
                 L = Vec3f(0.0f);
             }
-            for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+            if constexpr (kWeighted)
+                weighted.add(weights[k], L);
+            else
+                for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
             if (i0 + k + 1 != checkpoints.spp[next]) continue;
             // Summed in index order either way: bit-identical to a render
             // that stops here.
-            writePixel(sum, sumSq, i0 + k + 1, pixel, *checkpoints.image[next],
-                       *checkpoints.variance[next]);
+            if constexpr (kWeighted)
+                writeWeightedPixel(weighted, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                                   *checkpoints.variance[next]);
+            else
+                writePixel(sum, sumSq, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                           *checkpoints.variance[next]);
             result.nonFiniteAt[next] += nonFinite;
             if (checkpoints.timed)
                 result.secondsAt[next] +=
@@ -129,8 +219,8 @@ void renderPixel(const RenderScene& scene, const PinholeCamera& camera, S& sampl
     result.nonFinite += nonFinite;
 }
 
-template <Sampler S>
-TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& sampler,
+template <bool kWeighted, Sampler S>
+TileResult renderTile(const RenderScene& scene, const FrameSetup& frame, S& sampler,
                       const Tile& tile, const IntegratorSettings& integrator,
                       const Checkpoints& checkpoints) {
     TileResult result;
@@ -138,7 +228,8 @@ TileResult renderTile(const RenderScene& scene, const PinholeCamera& camera, S& 
     result.secondsAt.assign(checkpoints.spp.size(), 0.0);
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x)
-            renderPixel(scene, camera, sampler, Vec2i{x, y}, integrator, checkpoints, result);
+            renderPixel<kWeighted>(scene, frame, sampler, Vec2i{x, y}, integrator, checkpoints,
+                                   result);
     return result;
 }
 
@@ -199,22 +290,27 @@ void validateRenderSettings(const RenderSettings& s) {
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     validateRenderSettings(settings);
     const auto start = std::chrono::steady_clock::now();
-    const Vec2i res =
-        settings.resolution.x > 0 ? settings.resolution : scene.description().resolution;
+    const SceneDescription& desc = scene.description();
+    // The full image the camera maps; the rendered image is its crop.
+    const Vec2i res = settings.resolution.x > 0 ? settings.resolution : desc.resolution;
     const AnySampler prototype =
         makeSampler(settings.sampler, SamplerConfig{settings.samplesPerPixel, settings.seed, res});
-    const PinholeCamera camera(scene.description().camera, res);
-    const IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
-                                        settings.rouletteDepth, settings.batchPaths};
+    const FrameSetup frame = makeFrame(desc, res);
+    const bool weighted = settings.weightedFilm || !frame.filter.constantWeight();
+    IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
+                                  settings.rouletteDepth, settings.batchPaths};
+    integrator.firstBounce = dims::firstBounce(frame.camera.hasLens());
 
+    const PixelBounds& b = frame.bounds;
     std::vector<Tile> tiles;
-    for (int y = 0; y < res.y; y += kTileSize)
-        for (int x = 0; x < res.x; x += kTileSize)
-            tiles.push_back({x, y, std::min(x + kTileSize, res.x), std::min(y + kTileSize, res.y)});
+    for (int y = b.min.y; y < b.max.y; y += kTileSize)
+        for (int x = b.min.x; x < b.max.x; x += kTileSize)
+            tiles.push_back(
+                {x, y, std::min(x + kTileSize, b.max.x), std::min(y + kTileSize, b.max.y)});
 
-    RenderOutput out{Image(res.x, res.y), Image(res.x, res.y), {}, {}};
-    for (int n : settings.prefixSpp)
-        out.prefixes.push_back({n, Image(res.x, res.y), Image(res.x, res.y), 0, 0});
+    const int w = b.width(), h = b.height();
+    RenderOutput out{Image(w, h), Image(w, h), {}, {}};
+    for (int n : settings.prefixSpp) out.prefixes.push_back({n, Image(w, h), Image(w, h), 0, 0});
     Checkpoints checkpoints;
     for (PrefixImage& p : out.prefixes) {
         checkpoints.spp.push_back(p.spp);
@@ -242,7 +338,10 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
             AnySampler sampler = prototype;
             results[t] = std::visit(
                 [&](auto& s) {
-                    return renderTile(scene, camera, s, tiles[t], integrator, checkpoints);
+                    return weighted ? renderTile<true>(scene, frame, s, tiles[t], integrator,
+                                                       checkpoints)
+                                    : renderTile<false>(scene, frame, s, tiles[t], integrator,
+                                                        checkpoints);
                 },
                 sampler);
         }
@@ -266,7 +365,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         for (size_t k = 0; k < out.prefixes.size(); ++k)
             out.prefixes[k].nonFinite += r.nonFiniteAt[k];
     }
-    out.stats.paths = uint64_t(res.x) * uint64_t(res.y) * uint64_t(settings.samplesPerPixel);
+    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(settings.samplesPerPixel);
     out.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double fixedSeconds = std::max(0.0, out.stats.seconds - parallelSeconds);

@@ -28,6 +28,11 @@ struct RenderSettings {
     // below samplesPerPixel). Only for progressive samplers (SamplerInfo), for
     // which each is bit-identical to a render at that spp.
     std::vector<int> prefixSpp;
+    // Keep every pixel as the weighted film does (Σ w·L / Σ w, with its
+    // variance estimate) even when the filter's weights are all 1 — for the
+    // box and triangle filters the same image, bit for bit, as the plain mean.
+    // Off only to compare the two.
+    bool weightedFilm = false;
 };
 
 struct RenderStats {
@@ -49,8 +54,10 @@ struct PrefixImage {
     uint64_t nonFinite = 0;
 };
 
+// The images cover the film's pixel bounds (render/film.h): the whole
+// resolution unless the scene's film has a crop window.
 struct RenderOutput {
-    Image image;           // mean radiance per pixel
+    Image image;           // filtered radiance per pixel (the plain mean for a box of radius ½)
     Image varianceOfMean;  // per pixel and channel: sample variance / spp
     RenderStats stats;
     std::vector<PrefixImage> prefixes;  // one per RenderSettings::prefixSpp

@@ -20,17 +20,29 @@
 namespace pathlab {
 
 // The dimension layout, fixed for every sampler (see docs/rendering.md).
-// startPixelSample(pixel, index, 0) is followed by getPixel2D() (dims 0,1), then
-// one block of kDimsPerBounce dimensions per path vertex, in this order:
+// startPixelSample(pixel, index, 0) is followed by getPixel2D() (dims 0,1); a
+// camera with a thin lens then draws its lens position with get2D() (dims 2,3,
+// as pbrt-v4's GetCameraSample draws pLens right after the pixel, less the
+// time dimension pathlab has no use for). Then comes one block of
+// kDimsPerBounce dimensions per path vertex, in this order:
 //   +0      light choice (1D)           — which light next-event estimation samples
 //   +1,+2   point on that light (2D)
 //   +3      BSDF lobe choice (1D)       — e.g. reflect or refract at glass
 //   +4,+5   BSDF direction (2D)
 //   +6      Russian roulette (1D)
-// A sampler whose native dimension count is smaller pads the rest (each
-// sampler documents how).
+// The first block starts at kFirstBounce (2) without a lens and at
+// kFirstBounce + kLensDimensions (4) with one: the renderer carries it at run
+// time (IntegratorSettings::firstBounce), so a pinhole's layout, and every
+// image rendered through one, is unchanged. A sampler whose native dimension
+// count is smaller pads the rest (each sampler documents how). Samplers that
+// key their tables on the lens-free layout (blue-noise's lookup terms,
+// zsobol's tabulated low digits, `pathlab points`' 2D pairs) still give each
+// dimension a pure function of (pixel, index, dimension, seed) with a lens; only
+// their notion of which vertex a dimension belongs to is shifted by two.
 namespace dims {
 inline constexpr int kPixel = 0;
+inline constexpr int kLens = 2;  // with a thin lens only
+inline constexpr int kLensDimensions = 2;
 inline constexpr int kFirstBounce = 2;
 inline constexpr int kLightChoice = 0;
 inline constexpr int kLightPoint = 1;
@@ -38,11 +50,17 @@ inline constexpr int kBsdfLobe = 3;
 inline constexpr int kBsdfDirection = 4;
 inline constexpr int kRoulette = 6;
 inline constexpr int kDimsPerBounce = 7;
-// First dimension of the block of path vertex `depth` (0 = the camera ray's hit).
-constexpr int bounceBase(int depth) {
-    return kFirstBounce + depth * kDimsPerBounce;
+// The first dimension of vertex 0's block: after the lens when there is one.
+constexpr int firstBounce(bool lens) {
+    return kFirstBounce + (lens ? kLensDimensions : 0);
 }
-// The path depth a dimension belongs to (-1 for the pixel dimensions).
+// First dimension of the block of path vertex `depth` (0 = the camera ray's
+// hit), whose first block starts at `first` (firstBounce(lens)).
+constexpr int bounceBase(int depth, int first = kFirstBounce) {
+    return first + depth * kDimsPerBounce;
+}
+// The path depth a dimension belongs to (-1 for the pixel dimensions), in the
+// lens-free layout.
 constexpr int depthOfDimension(int dim) {
     return dim < kFirstBounce ? -1 : (dim - kFirstBounce) / kDimsPerBounce;
 }

@@ -557,7 +557,10 @@ class ZSobolSampler {
     // (fillLowTable), when the pixel first draws the dimension.
     static constexpr int kMaxTableLog2Spp = 8;
     // Only the dimensions of the first three path vertices, which nearly every
-    // sample draws; deeper ones, drawn by fewer samples, walk the tree.
+    // sample draws; deeper ones, drawn by fewer samples, walk the tree. (With
+    // a thin lens the vertices start two dimensions later: the third
+    // vertex's last two then walk the tree too — the same values, a little
+    // slower.)
     static constexpr int kTabulatedDimensions = dims::bounceBase(3);
     std::vector<uint16_t> lowTable_;   // kTabulatedDimensions × 2^log2Spp_ (empty: none)
     std::vector<uint32_t> lowSobol1_;  // their bit-reversed Sobol' dimension 1, alike

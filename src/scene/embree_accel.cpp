@@ -55,19 +55,43 @@ unsigned attachSpheres(RTCDevice device, RTCScene scene, const std::vector<Spher
     return id;
 }
 
+// Embree's memory monitor: every allocation (positive) and release (negative)
+// the device makes, summed into the accelerator's count.
+bool countEmbreeBytes(void* counter, ssize_t bytes, bool /*post*/) {
+    static_cast<std::atomic<int64_t>*>(counter)->fetch_add(int64_t(bytes),
+                                                           std::memory_order_relaxed);
+    return true;
+}
+
+// Meshes (geometry ID = index) and then spheres (one geometry) into `scene`,
+// committed; returns the spheres' geometry ID, or RTC_INVALID_GEOMETRY_ID.
+unsigned buildShapes(RTCDevice device, RTCScene scene, const std::vector<Mesh>& meshes,
+                     const std::vector<Sphere>& spheres) {
+    // Scene quality LOW asks Embree for its two-level structure, in which each
+    // geometry keeps the build quality set on it (HIGH: spatial-split SAH).
+    const size_t geometries = meshes.size() + (spheres.empty() ? 0 : 1);
+    rtcSetSceneBuildQuality(scene, geometries <= kMaxTwoLevelGeometries ? RTC_BUILD_QUALITY_LOW
+                                                                        : RTC_BUILD_QUALITY_HIGH);
+    for (const Mesh& mesh : meshes) attachMesh(device, scene, mesh);
+    return spheres.empty() ? RTC_INVALID_GEOMETRY_ID : attachSpheres(device, scene, spheres);
+}
+
 }  // namespace
 
 EmbreeAccel::EmbreeAccel(const SceneDescription& desc) {
+    // validateScene rejects this; checked here too (before anything is
+    // allocated) for scenes built in code and never validated.
+    for (const ObjectInstance& inst : desc.instances)
+        if (inst.object < 0 || size_t(inst.object) >= desc.objects.size())
+            throw std::runtime_error("an instance refers to object " + std::to_string(inst.object) +
+                                     ", which does not exist");
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("cannot create the Embree device");
+    rtcSetDeviceMemoryMonitorFunction(device_, countEmbreeBytes, &embreeBytes_);
+    buildObjects(desc);
     scene_ = rtcNewScene(device_);
-    // Scene quality LOW asks Embree for its two-level structure, in which each
-    // geometry keeps the build quality set on it (HIGH: spatial-split SAH).
-    const size_t geometries = desc.meshes.size() + (desc.spheres.empty() ? 0 : 1);
-    rtcSetSceneBuildQuality(scene_, geometries <= kMaxTwoLevelGeometries ? RTC_BUILD_QUALITY_LOW
-                                                                         : RTC_BUILD_QUALITY_HIGH);
-    for (const Mesh& mesh : desc.meshes) attachMesh(device_, scene_, mesh);
-    if (!desc.spheres.empty()) sphereGeomId_ = attachSpheres(device_, scene_, desc.spheres);
+    sphereGeomId_ = buildShapes(device_, scene_, desc.meshes, desc.spheres);
+    attachInstances(desc);
     rtcCommitScene(scene_);
     if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
         throw std::runtime_error("Embree failed to build the scene");
@@ -77,8 +101,50 @@ EmbreeAccel::EmbreeAccel(const SceneDescription& desc) {
     boundsMax_ = {b.upper_x, b.upper_y, b.upper_z};
 }
 
+void EmbreeAccel::buildObjects(const SceneDescription& desc) {
+    objectScenes_.assign(desc.objects.size(), nullptr);
+    objectSphereGeomIds_.assign(desc.objects.size(), RTC_INVALID_GEOMETRY_ID);
+    // Only placed objects are built: an unused ObjectBegin costs nothing.
+    std::vector<char> used(desc.objects.size(), 0);
+    for (const ObjectInstance& inst : desc.instances) used[size_t(inst.object)] = 1;
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const InstancedObject& object = desc.objects[i];
+        if (!used[i] || (object.meshes.empty() && object.spheres.empty())) continue;
+        objectScenes_[i] = rtcNewScene(device_);
+        objectSphereGeomIds_[i] =
+            buildShapes(device_, objectScenes_[i], object.meshes, object.spheres);
+        rtcCommitScene(objectScenes_[i]);
+    }
+}
+
+void EmbreeAccel::attachInstances(const SceneDescription& desc) {
+    // Instance i gets top-level ID first + i, after every mesh and the spheres,
+    // so that meshes keep geometry ID = mesh index. IDs of instances of empty
+    // objects (nothing attached) are simply left unused.
+    firstInstanceGeomId_ = unsigned(desc.meshes.size() + (desc.spheres.empty() ? 0 : 1));
+    for (size_t i = 0; i < desc.instances.size(); ++i) {
+        const ObjectInstance& inst = desc.instances[i];
+        RTCScene object = objectScenes_[size_t(inst.object)];
+        if (!object) continue;
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, object);
+        // Column-major 3×4: the columns of M, then the translation.
+        const Affine& xf = inst.objectToWorld;
+        float m[12];
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) m[3 * c + r] = xf.m[r][c];
+        m[9] = xf.t.x, m[10] = xf.t.y, m[11] = xf.t.z;
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(scene_, geom, instanceGeometryId(i));
+        rtcReleaseGeometry(geom);
+    }
+}
+
 EmbreeAccel::~EmbreeAccel() {
     if (scene_) rtcReleaseScene(scene_);
+    for (RTCScene object : objectScenes_)
+        if (object) rtcReleaseScene(object);
     if (device_) rtcReleaseDevice(device_);
 }
 
@@ -114,6 +180,7 @@ bool EmbreeAccel::intersect(Vec3f o, Vec3f d, float tMax, RayHit* hit) const {
     hit->primId = rh.hit.primID;
     hit->u = rh.hit.u;
     hit->v = rh.hit.v;
+    hit->instId = rh.hit.instID[0];
     return true;
 }
 
@@ -222,6 +289,7 @@ void EmbreeAccel::intersect8(RTCRayHit8& rh, const int* valid, int count,
         hit.primId = rh.hit.primID[k];
         hit.u = rh.hit.u[k];
         hit.v = rh.hit.v[k];
+        hit.instId = rh.hit.instID[0][k];
     }
 }
 

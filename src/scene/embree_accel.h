@@ -1,6 +1,10 @@
 // Ray queries through Embree 3: one RTCScene holding every mesh of a scene as
 // triangle geometry (geometry ID = mesh index) and all spheres as one
 // sphere-point geometry (geometry ID = mesh count, primitive ID = sphere index).
+// Instanced objects (SceneDescription::objects) are each one RTCScene built
+// once, laid out the same way (geometry ID = the object's mesh index, its
+// spheres after them), and placed by one Embree instance geometry per
+// ObjectInstance (top-level geometry ID = instanceGeometryId(instance)).
 //
 // Queries can be recorded (RayRecorder) so a frame's exact rays can be replayed
 // against Embree alone: the limit the renderer's ray throughput is judged by.
@@ -9,6 +13,9 @@
 #include <embree3/rtcore.h>
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -22,6 +29,10 @@ struct RayHit {
     float t;
     unsigned geomId, primId;
     float u, v;  // barycentrics of vertices 1 and 2 (triangles)
+    // RTC_INVALID_GEOMETRY_ID for top-level geometry; otherwise the top-level
+    // geometry ID of the instance hit (EmbreeAccel::instanceIndex), and geomId
+    // and primId name the shape inside that instance's object.
+    unsigned instId;
 };
 
 // A ray as the renderer asked for it: closest hit, or any hit (shadow ray);
@@ -89,8 +100,22 @@ class EmbreeAccel {
     RTCScene embreeScene() const { return scene_; }
 
     unsigned sphereGeometryId() const { return sphereGeomId_; }
+    // The sphere geometry inside object `object`'s scene (its mesh count), or
+    // RTC_INVALID_GEOMETRY_ID when it has no spheres.
+    unsigned objectSphereGeometryId(size_t object) const { return objectSphereGeomIds_[object]; }
+    // Instance i of SceneDescription::instances is top-level geometry
+    // instanceGeometryId(i); a hit's instId maps back with instanceIndex.
+    unsigned instanceGeometryId(size_t instance) const {
+        return firstInstanceGeomId_ + unsigned(instance);
+    }
+    size_t instanceIndex(unsigned instId) const { return instId - firstInstanceGeomId_; }
     Vec3f boundsMin() const { return boundsMin_; }
     Vec3f boundsMax() const { return boundsMax_; }
+    // Bytes Embree holds for this scene now (BVHs and geometry buffers), as its
+    // device's memory monitor reports every allocation and release: what
+    // instancing saves is measured here, independent of the process's other
+    // allocations.
+    size_t embreeBytes() const { return size_t(std::max<int64_t>(embreeBytes_.load(), 0)); }
 
   private:
     // Traces a filled packet (the hits' IDs are reset here, the rays recorded)
@@ -98,9 +123,18 @@ class EmbreeAccel {
     void intersect8(RTCRayHit8& rh, const int* valid, int count, RTCIntersectContextFlags flags,
                     RayHit* hits, bool* found) const;
 
+    // The instanced objects' scenes, one per object that some instance places
+    // (null for the others), each committed once and shared by its instances.
+    void buildObjects(const SceneDescription& desc);
+    void attachInstances(const SceneDescription& desc);
+
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     unsigned sphereGeomId_ = RTC_INVALID_GEOMETRY_ID;
+    std::vector<RTCScene> objectScenes_;
+    std::vector<unsigned> objectSphereGeomIds_;
+    unsigned firstInstanceGeomId_ = 0;
+    std::atomic<int64_t> embreeBytes_{0};
     Vec3f boundsMin_, boundsMax_;
     RayRecorder* recorder_ = nullptr;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/error.h"
@@ -10,6 +11,7 @@
 #include "scene/json_scene.h"
 #include "scene/mesh_utils.h"
 #include "scene/obj_loader.h"
+#include "scene/pbrt/importer.h"
 #include "scene/validate.h"
 
 namespace pathlab {
@@ -38,7 +40,21 @@ SceneDescription loadObjScene(const std::string& path) {
     return scene;
 }
 
-SceneDescription loadScene(const std::string& nameOrPath) {
+namespace {
+
+SceneDescription loadPbrtScene(const std::string& path, const SceneLoadOptions& options) {
+    pbrt::ImportResult r = pbrt::importPbrtFile(path, {options.lenient});
+    for (const std::string& note : r.notes) std::fprintf(stderr, "pathlab: %s\n", note.c_str());
+    for (const std::string& w : r.warnings) std::fprintf(stderr, "pathlab: %s\n", w.c_str());
+    if (!r.warnings.empty())
+        std::fprintf(stderr, "pathlab: %s: %zu unsupported feature%s substituted (--lenient)\n",
+                     path.c_str(), r.warnings.size(), r.warnings.size() == 1 ? "" : "s");
+    return std::move(r.scene);
+}
+
+}  // namespace
+
+SceneDescription loadScene(const std::string& nameOrPath, const SceneLoadOptions& options) {
     SceneDescription scene;
     if (nameOrPath == "cornell-box") {
         scene = cornellBoxScene();
@@ -59,9 +75,11 @@ SceneDescription loadScene(const std::string& nameOrPath) {
             scene = loadJsonScene(nameOrPath);
         else if (ext == ".obj")
             scene = loadObjScene(nameOrPath);
+        else if (ext == ".pbrt")
+            scene = loadPbrtScene(nameOrPath, options);
         else
             throw InputError("scene file '" + nameOrPath + "' has an unsupported type '" + ext +
-                             "' (expected .json or .obj)");
+                             "' (expected .json, .obj or .pbrt)");
     }
     validateScene(scene, nameOrPath);
     return scene;

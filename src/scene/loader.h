@@ -8,12 +8,19 @@
 
 namespace pathlab {
 
+struct SceneLoadOptions {
+    // pbrt-v4 files: substitute what pathlab does not support, with a warning
+    // on stderr for each and a summary line (pbrt::ImportOptions::lenient).
+    bool lenient = false;
+};
+
 // "cornell-box" and "wolf" are built in; anything else is a file path:
 //   .json  pathlab's scene format (docs/scene-format.md);
-//   .obj   a bare OBJ/MTL model (see loadObjScene).
+//   .obj   a bare OBJ/MTL model (see loadObjScene);
+//   .pbrt  a pbrt-v4 scene (docs/pbrt-format.md).
 // The result is validated (validateScene). Throws InputError with one line
 // for an unknown name, a missing or unreadable file, or a bad scene.
-SceneDescription loadScene(const std::string& nameOrPath);
+SceneDescription loadScene(const std::string& nameOrPath, const SceneLoadOptions& options = {});
 
 // An OBJ/MTL model as a scene: the camera frames its bounding sphere from the
 // +z side, a little above and to the right (fovY 40°); the model's own

@@ -11,14 +11,49 @@ Bounds3f meshBounds(const Mesh& mesh) {
     return b;
 }
 
-Bounds3f sceneBounds(const SceneDescription& scene) {
-    Bounds3f b;
-    for (const Mesh& m : scene.meshes)
+namespace {
+
+void extendByShapes(Bounds3f& b, const std::vector<Mesh>& meshes,
+                    const std::vector<Sphere>& spheres) {
+    for (const Mesh& m : meshes)
         for (uint32_t i : m.indices)
             if (i < m.positions.size()) b.extend(m.positions[i]);
-    for (const Sphere& s : scene.spheres) {
+    for (const Sphere& s : spheres) {
         b.extend(s.center - Vec3f(s.radius));
         b.extend(s.center + Vec3f(s.radius));
+    }
+}
+
+}  // namespace
+
+Bounds3f objectBounds(const InstancedObject& object) {
+    Bounds3f b;
+    extendByShapes(b, object.meshes, object.spheres);
+    return b;
+}
+
+Bounds3f transformBounds(const Bounds3f& b, const Affine& xf) {
+    Bounds3f out;
+    if (b.empty()) return out;
+    for (int c = 0; c < 8; ++c)
+        out.extend(
+            xf.point({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z}));
+    return out;
+}
+
+Bounds3f sceneBounds(const SceneDescription& scene) {
+    Bounds3f b;
+    extendByShapes(b, scene.meshes, scene.spheres);
+    // Each object's bounds once, not once per instance: a forest of a million
+    // instances of one tree costs a million corner transforms, not a million
+    // walks over the tree's vertices.
+    std::vector<Bounds3f> objects;
+    objects.reserve(scene.objects.size());
+    for (const InstancedObject& o : scene.objects) objects.push_back(objectBounds(o));
+    for (const ObjectInstance& inst : scene.instances) {
+        if (inst.object < 0 || size_t(inst.object) >= objects.size()) continue;
+        const Bounds3f ib = transformBounds(objects[size_t(inst.object)], inst.objectToWorld);
+        if (!ib.empty()) b.extend(ib.lo), b.extend(ib.hi);
     }
     return b;
 }
@@ -33,69 +68,6 @@ void appendQuad(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2, Vec3f p3) {
     const auto base = static_cast<uint32_t>(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {p0, p1, p2, p3});
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-}
-
-Affine Affine::translation(Vec3f t) {
-    Affine a;
-    a.t = t;
-    return a;
-}
-
-Affine Affine::scaling(Vec3f s) {
-    Affine a;
-    a.m[0][0] = s.x, a.m[1][1] = s.y, a.m[2][2] = s.z;
-    return a;
-}
-
-Affine Affine::rotation(Vec3f axis, float degrees) {
-    const Vec3f k = normalize(axis);
-    const double th = double(degrees) * 3.14159265358979323846 / 180.0;
-    const float c = float(std::cos(th)), s = float(std::sin(th)), C = 1 - c;
-    Affine a;
-    a.m[0][0] = c + k.x * k.x * C, a.m[0][1] = k.x * k.y * C - k.z * s,
-    a.m[0][2] = k.x * k.z * C + k.y * s;
-    a.m[1][0] = k.y * k.x * C + k.z * s, a.m[1][1] = c + k.y * k.y * C,
-    a.m[1][2] = k.y * k.z * C - k.x * s;
-    a.m[2][0] = k.z * k.x * C - k.y * s, a.m[2][1] = k.z * k.y * C + k.x * s,
-    a.m[2][2] = c + k.z * k.z * C;
-    return a;
-}
-
-Affine operator*(const Affine& a, const Affine& b) {
-    Affine r;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
-    r.t = a.point(b.t);
-    return r;
-}
-
-Vec3f Affine::vector(Vec3f v) const {
-    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
-            m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-}
-
-Vec3f Affine::point(Vec3f p) const {
-    return vector(p) + t;
-}
-
-float Affine::determinant() const {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
-
-Vec3f Affine::normal(Vec3f n) const {
-    // M⁻ᵀ has the rows r1×r2, r2×r0, r0×r1 divided by det M. The division only
-    // scales, but its sign matters: it keeps the normal on the same side as
-    // the geometric normal of the (winding-flipped, see transformMesh) result.
-    const Vec3f r0{m[0][0], m[0][1], m[0][2]}, r1{m[1][0], m[1][1], m[1][2]},
-        r2{m[2][0], m[2][1], m[2][2]};
-    const Vec3f c0 = cross(r1, r2), c1 = cross(r2, r0), c2 = cross(r0, r1);
-    Vec3f out{dot(c0, n), dot(c1, n), dot(c2, n)};
-    if (determinant() < 0) out = -out;
-    return normalize(out);
 }
 
 void transformMesh(Mesh& mesh, const Affine& xf) {

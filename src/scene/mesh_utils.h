@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include "core/affine.h"
 #include "scene/scene.h"
 
 namespace pathlab {
@@ -21,7 +22,13 @@ struct Bounds3f {
 };
 
 Bounds3f meshBounds(const Mesh& mesh);
-// Meshes and spheres together.
+// An object's meshes (their referenced vertices) and spheres, in object space.
+Bounds3f objectBounds(const InstancedObject& object);
+// The box around `b` carried by `xf`: its eight corners transformed, so it
+// holds everything b holds (not tight under rotation).
+Bounds3f transformBounds(const Bounds3f& b, const Affine& xf);
+// Meshes and spheres together, and every instance of an object (its object
+// bounds transformed, see transformBounds).
 Bounds3f sceneBounds(const SceneDescription& scene);
 
 // Twice the area's vector: (p1−p0)×(p2−p0); its direction is the triangle's
@@ -36,25 +43,6 @@ void appendTriangle(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2);
 // triangles (p0,p1,p2) and (p0,p2,p3): both keep the quad's winding, so a
 // quad's front side is that of (p1−p0)×(p2−p0).
 void appendQuad(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2, Vec3f p3);
-
-// An affine transform p ↦ M p + t (row-major 3×3 M).
-struct Affine {
-    float m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    Vec3f t{0.0f};
-
-    static Affine translation(Vec3f t);
-    static Affine scaling(Vec3f s);
-    // Rotation by `degrees` around `axis` (right-handed, Rodrigues' formula).
-    static Affine rotation(Vec3f axis, float degrees);
-    // (a * b)(p) = a(b(p)).
-    friend Affine operator*(const Affine& a, const Affine& b);
-
-    Vec3f point(Vec3f p) const;
-    Vec3f vector(Vec3f v) const;
-    // Normals transform with the inverse transpose; the result is normalised.
-    Vec3f normal(Vec3f n) const;
-    float determinant() const;
-};
 
 // Applies `xf` to positions and normals. A mirroring transform (negative
 // determinant) would turn every triangle's front side inside out, so the

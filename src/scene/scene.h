@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/affine.h"
 #include "core/math.h"
 
 namespace pathlab {
@@ -59,13 +60,86 @@ struct Sphere {
     int material = 0;
 };
 
-// A pinhole camera looking from `eye` towards `target`; `fovY` is the vertical
-// field of view in degrees. Image axes: forward = normalize(target − eye),
-// image right = normalize(cross(forward, up)), image up = cross(right, forward).
-// (So the Cornell box, seen from −z with up +y, has +x on the image's left.)
+// How film positions become rays.
+enum class Projection { Perspective, Orthographic };
+
+// The camera. pathlab's own scenes give a pinhole looking from `eye` towards
+// `target`; `fovY` is the vertical field of view in degrees. Image axes:
+// forward = normalize(target − eye), image right = normalize(cross(forward,
+// up)), image up = cross(right, forward). (So the Cornell box, seen from −z
+// with up +y, has +x on the image's left.)
+//
+// A pbrt-v4 camera (`pbrtFrame`) gives camera space directly instead: the
+// camera-space point (x, y, z) is world eye + x·axisX + y·axisY + z·axisZ, with
+// pbrt-v4's convention x = image right, y = image up, z = forward (its
+// transforms may mirror or scale the axes; target, up and fovY are then
+// unused). The film maps to pbrt-v4's screen window: a perspective camera's
+// ray through screen point (sx, sy) has the camera-space direction
+// (sx·tan(fov/2), sy·tan(fov/2), 1); an orthographic camera's starts at
+// (sx, sy, 0) going +z. A thin lens (lensRadius > 0) focuses at
+// focalDistance along z, as pbrt-v4's PerspectiveCamera / OrthographicCamera.
 struct Camera {
     Vec3f eye{0, 0, 0}, target{0, 0, -1}, up{0, 1, 0};
     float fovY = 45;
+
+    bool pbrtFrame = false;
+    Vec3f axisX{1, 0, 0}, axisY{0, 1, 0}, axisZ{0, 0, 1};
+    Projection projection = Projection::Perspective;
+    float fov = 90;  // degrees, across the screen window's shorter side [-1, 1]
+    // xmin, xmax, ymin, ymax; all zero: pbrt-v4's default from the frame
+    // aspect ratio a (a > 1: [-a, a] × [-1, 1], else [-1, 1] × [-1/a, 1/a]).
+    float screenWindow[4] = {0, 0, 0, 0};
+    float frameAspectRatio = 0;  // 0: the image's width / height
+    float lensRadius = 0;        // 0: pinhole
+    float focalDistance = 1e6f;
+};
+
+// The pixel reconstruction filter, sampled by filter importance sampling as
+// pbrt-v4 does (the sample's position is drawn from the filter, weighted by
+// f/pdf). Box of radius 0.5 is a uniform position inside the pixel.
+enum class FilterType { Box, Gaussian, Triangle, Mitchell, Lanczos };
+struct PixelFilter {
+    FilterType type = FilterType::Box;
+    Vec2f radius{0.5f, 0.5f};
+    float sigma = 0.5f;                // gaussian
+    float b = 1 / 3.0f, c = 1 / 3.0f;  // mitchell
+    float tau = 3;                     // lanczos
+};
+
+struct Film {
+    PixelFilter filter;
+    // Multiplies the image: pbrt-v4's imaging ratio, exposuretime · iso / 100
+    // (times the film's `scale`).
+    float scale = 1;
+    // The part of the image rendered, as fractions xmin, xmax, ymin, ymax of
+    // the full resolution (pbrt-v4's cropwindow): the image holds pixels
+    // ceil(W·xmin) … ceil(W·xmax) − 1 and likewise in y.
+    float cropWindow[4] = {0, 1, 0, 1};
+};
+
+// What a scene file asks the renderer for (pbrt-v4's Sampler and Integrator
+// directives); the command line overrides each. Unset: the renderer's own.
+struct RenderDefaults {
+    std::string sampler;      // "" = unset
+    int samplesPerPixel = 0;  // 0 = unset
+    bool hasSeed = false;
+    uint64_t seed = 0;
+    int maxDepth = -1;  // -1 = unset
+};
+
+// A group of shapes defined once (pbrt-v4's ObjectBegin … ObjectEnd) and
+// placed any number of times by instances, each with its own transform.
+// The renderer builds its geometry once (Embree instances), so memory grows
+// with the unique geometry, not the instance count. Instanced shapes do not
+// emit (as in pbrt-v4).
+struct InstancedObject {
+    std::string name;
+    std::vector<Mesh> meshes;
+    std::vector<Sphere> spheres;
+};
+struct ObjectInstance {
+    int object = 0;  // index into SceneDescription::objects
+    Affine objectToWorld;
 };
 
 struct SceneDescription {
@@ -78,6 +152,10 @@ struct SceneDescription {
     std::vector<Sphere> spheres;
     Vec3f environment{0.0f};  // constant radiance arriving from every direction
     std::string credit;       // attribution to show wherever the scene's images appear
+    Film film;
+    RenderDefaults defaults;
+    std::vector<InstancedObject> objects;
+    std::vector<ObjectInstance> instances;
 };
 
 }  // namespace pathlab

@@ -1,5 +1,6 @@
 #include "scene/validate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -23,7 +24,23 @@ bool nonNegativeFinite(Vec3f c) {
     return isFinite(c) && c.x >= 0 && c.y >= 0 && c.z >= 0;
 }
 
+// A pbrt-v4 camera: its frame must span space, its lens and screen make sense.
+void validatePbrtCamera(const Camera& c, const std::string& source) {
+    if (!isFinite(c.eye) || !isFinite(c.axisX) || !isFinite(c.axisY) || !isFinite(c.axisZ))
+        fail(source, "camera has a non-finite position or axis");
+    const float volume = std::abs(dot(cross(c.axisX, c.axisY), c.axisZ));
+    if (!(volume > 1e-12f * length(c.axisX) * length(c.axisY) * length(c.axisZ)) ||
+        !std::isfinite(volume))
+        fail(source, "camera transform is singular: its axes do not span space");
+    if (c.projection == Projection::Perspective && !(c.fov > 0 && c.fov < 180))
+        fail(source, "camera fov must be in (0, 180) degrees, got " + std::to_string(c.fov));
+    if (!(c.lensRadius >= 0 && std::isfinite(c.lensRadius)) ||
+        !(c.focalDistance > 0 && std::isfinite(c.focalDistance)))
+        fail(source, "camera lens radius must be >= 0 and focal distance > 0");
+}
+
 void validateCamera(const Camera& c, const std::string& source) {
+    if (c.pbrtFrame) return validatePbrtCamera(c, source);
     if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up))
         fail(source, "camera has a non-finite eye, target or up");
     const Vec3f forward = c.target - c.eye;
@@ -52,9 +69,12 @@ void validateMaterial(const Material& m, size_t textureCount, const std::string&
     }
 }
 
-void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const std::string& source) {
+// `owner` prefixes the mesh's description: "" at the top level, "object 'o' "
+// inside an instanced object.
+void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const std::string& source,
+                  const std::string& owner = "") {
     const std::string what =
-        "mesh '" + (mesh.name.empty() ? std::to_string(index) : mesh.name) + "'";
+        owner + "mesh '" + (mesh.name.empty() ? std::to_string(index) : mesh.name) + "'";
     const size_t n = mesh.positions.size();
     if (mesh.indices.size() % 3 != 0)
         fail(source, what + " has an index count that is not a multiple of 3");
@@ -99,6 +119,80 @@ void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const st
     }
 }
 
+void validateSphere(const Sphere& s, const std::string& what, size_t materialCount,
+                    const std::string& source) {
+    if (!isFinite(s.center) || !(std::isfinite(s.radius) && s.radius > 0))
+        fail(source, what + " has a non-finite centre or a non-positive radius");
+    if (s.material < 0 || size_t(s.material) >= materialCount)
+        fail(source,
+             what + " refers to material " + std::to_string(s.material) + " which does not exist");
+}
+
+std::string objectName(const SceneDescription& scene, size_t i) {
+    const std::string& name = scene.objects[i].name;
+    return "object '" + (name.empty() ? std::to_string(i) : name) + "'";
+}
+
+// Objects as top-level shapes, minus emission (pbrt-v4 does not support area
+// lights in an object either: it warns and the shapes do not emit; here the
+// scene is rejected so that no light silently disappears. One emitter per
+// instance would make the light set grow with the instance count, the very
+// cost instancing avoids); instances refer to an
+// object that exists with a finite, invertible transform (the renderer
+// inverts it to carry normals and sphere hits to world space). True when some
+// instance places some geometry.
+bool validateInstancing(const SceneDescription& scene, const std::string& source) {
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+        const InstancedObject& object = scene.objects[o];
+        const std::string owner = objectName(scene, o);
+        for (size_t i = 0; i < object.meshes.size(); ++i) {
+            const Mesh& mesh = object.meshes[i];
+            if (!isBlack(mesh.emission))
+                fail(source,
+                     owner + " has an emitting mesh '" +
+                         (mesh.name.empty() ? std::to_string(i) : mesh.name) +
+                         "': instanced shapes cannot be area lights (pbrt-v4 does not support them "
+                         "either)");
+            validateMesh(mesh, i, scene.materials.size(), source, owner + " ");
+        }
+        for (size_t i = 0; i < object.spheres.size(); ++i)
+            validateSphere(object.spheres[i], owner + " sphere " + std::to_string(i),
+                           scene.materials.size(), source);
+    }
+    bool geometry = false;
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const ObjectInstance& inst = scene.instances[i];
+        const std::string what = "instance " + std::to_string(i);
+        if (inst.object < 0 || size_t(inst.object) >= scene.objects.size())
+            fail(source, what + " refers to object " + std::to_string(inst.object) +
+                             " which does not exist (" + std::to_string(scene.objects.size()) +
+                             " objects)");
+        const std::string of = what + " of " + objectName(scene, size_t(inst.object));
+        const Affine& xf = inst.objectToWorld;
+        double scale = 0;
+        for (const auto& row : xf.m)
+            for (float v : row) {
+                if (!std::isfinite(v)) fail(source, of + " has a non-finite transform");
+                scale = std::max(scale, double(std::abs(v)));
+            }
+        if (!isFinite(xf.t)) fail(source, of + " has a non-finite translation");
+        // Relative to the matrix's size, so that an object scaled to
+        // millimetres is not taken for a flattened one.
+        const auto& m = xf.m;
+        const double det =
+            double(m[0][0]) * (double(m[1][1]) * m[2][2] - double(m[1][2]) * m[2][1]) -
+            double(m[0][1]) * (double(m[1][0]) * m[2][2] - double(m[1][2]) * m[2][0]) +
+            double(m[0][2]) * (double(m[1][0]) * m[2][1] - double(m[1][1]) * m[2][0]);
+        if (!(std::abs(det) > 1e-12 * scale * scale * scale))
+            fail(source,
+                 of + " has a singular transform (determinant " + std::to_string(det) + ")");
+        const InstancedObject& object = scene.objects[size_t(inst.object)];
+        for (const Mesh& mesh : object.meshes) geometry |= mesh.triangleCount() > 0;
+        geometry |= !object.spheres.empty();
+    }
+    return geometry;
+}
+
 }  // namespace
 
 void validateScene(const SceneDescription& scene, const std::string& source) {
@@ -117,16 +211,12 @@ void validateScene(const SceneDescription& scene, const std::string& source) {
         validateMesh(scene.meshes[i], i, scene.materials.size(), source);
         triangles += scene.meshes[i].triangleCount();
     }
-    for (size_t i = 0; i < scene.spheres.size(); ++i) {
-        const Sphere& s = scene.spheres[i];
-        const std::string what = "sphere " + std::to_string(i);
-        if (!isFinite(s.center) || !(std::isfinite(s.radius) && s.radius > 0))
-            fail(source, what + " has a non-finite centre or a non-positive radius");
-        if (s.material < 0 || size_t(s.material) >= scene.materials.size())
-            fail(source, what + " refers to material " + std::to_string(s.material) +
-                             " which does not exist");
-    }
-    if (triangles == 0 && scene.spheres.empty()) fail(source, "the scene has no geometry");
+    for (size_t i = 0; i < scene.spheres.size(); ++i)
+        validateSphere(scene.spheres[i], "sphere " + std::to_string(i), scene.materials.size(),
+                       source);
+    const bool instancedGeometry = validateInstancing(scene, source);
+    if (triangles == 0 && scene.spheres.empty() && !instancedGeometry)
+        fail(source, "the scene has no geometry");
 }
 
 }  // namespace pathlab

@@ -15,7 +15,11 @@ namespace pathlab {
 // colours or material parameters; a material or texture index that does not
 // exist; a degenerate (zero-area) triangle on an emitting mesh (a light is
 // sampled by area, so a zero-area triangle has no valid pdf); a sphere with
-// non-positive radius. Degenerate triangles on non-emitting meshes are left
+// non-positive radius; an instanced object's mesh that emits (instanced shapes
+// are never lights; pbrt-v4 does not support them either) or is broken as a
+// top-level one would be;
+// an instance of an object that does not exist, or whose transform is
+// non-finite or singular. Degenerate triangles on non-emitting meshes are left
 // alone: they are common in real meshes and harmless to the renderer.
 void validateScene(const SceneDescription& scene, const std::string& source);
 

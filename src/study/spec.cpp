@@ -139,8 +139,8 @@ StudyScene SpecReader::scene(const toml::node& n, const std::string& key) const 
              "names '" + v + "': neither a built-in scene (" + joined(builtins) +
                  ") nor an existing scene file");
     const std::string ext = p.extension().string();
-    if (ext != ".json" && ext != ".obj")
-        fail(n.source(), key, "names '" + v + "': a scene file must be .json or .obj");
+    if (ext != ".json" && ext != ".obj" && ext != ".pbrt")
+        fail(n.source(), key, "names '" + v + "': a scene file must be .json, .obj or .pbrt");
     return {p.stem().string(), fs::absolute(p).lexically_normal().string(), origin};
 }
 

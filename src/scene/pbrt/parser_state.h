@@ -1,0 +1,102 @@
+// The importer's state while it reads a pbrt-v4 file: the graphics state that
+// AttributeBegin/End saves and restores (PBRT 4th ed., appendix C; pbrt-v4's
+// BasicSceneBuilder), the named things, and the scene being built. Shared by
+// the grammar (parser.cpp) and the directives' meanings (options_block.cpp,
+// world_shapes.cpp, world_materials.cpp).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/pbrt/importer.h"
+#include "scene/pbrt/params.h"
+#include "scene/pbrt/transform.h"
+
+namespace pathlab::pbrt {
+
+struct AreaLight {
+    Vec3f radiance{1.0f};
+    bool twoSided = false;
+    SourceLocation where;
+};
+
+struct GraphicsState {
+    Matrix4 ctm;  // object-to-world of what comes next
+    bool reverseOrientation = false;
+    int material = -1;  // index into the scene's materials; -1: pbrt-v4's default diffuse
+    std::optional<AreaLight> areaLight;
+    // Attribute "shape" | "light" | "material" | "medium" | "texture" defaults.
+    std::map<std::string, ParamSet> attributes;
+};
+
+class ImportState {
+  public:
+    ImportState(const ImportOptions& options, std::string mainDir);
+
+    ImportResult result;
+    GraphicsState gs;
+    bool inWorld = false;
+    Matrix4 cameraFromWorld;  // the CTM at Camera
+    std::map<std::string, Matrix4> namedCoordinateSystems;
+    std::map<std::string, int> namedMaterials;  // name → material index
+    std::map<std::string, int> objects;         // name → index into scene.objects
+    int currentObject = -1;                     // inside ObjectBegin … ObjectEnd
+    std::string mainDir;                        // pbrt-v4 resolves files against it
+
+    // Something pbrt-v4 has and we do not: an error, or under --lenient a
+    // warning (`instead` says what is done instead).
+    void unsupported(const SourceLocation& where, const std::string& what,
+                     const std::string& instead);
+    void note(const SourceLocation& where, const std::string& what);
+    // Every parameter the directive did not read: unsupported.
+    void checkUnused(const ParamSet& params, const std::string& directive);
+    // A file named in the scene: relative to the main file's directory (as
+    // pbrt-v4), else to `includingDir`. InputError at `where` when missing.
+    std::string resolveFile(const std::string& name, const std::string& includingDir,
+                            const SourceLocation& where) const;
+    // The default material (pbrt-v4: diffuse, reflectance 0.5), made on first use.
+    int defaultMaterial();
+    bool lenient() const { return options_.lenient; }
+    // Counts a shape's triangles against ImportOptions::maxTriangles (only
+    // checks, without counting, when !keep: a shape about to be made).
+    void addTriangles(size_t count, const SourceLocation& where, bool keep = true);
+
+  private:
+    ImportOptions options_;
+    int defaultMaterial_ = -1;
+    size_t triangles_ = 0;
+};
+
+// The directives' meanings (parameters already parsed).
+void camera(ImportState& st, const std::string& type, const ParamSet& params,
+            const SourceLocation& where);
+void film(ImportState& st, const std::string& type, const ParamSet& params,
+          const SourceLocation& where);
+void pixelFilter(ImportState& st, const std::string& type, const ParamSet& params,
+                 const SourceLocation& where);
+void sampler(ImportState& st, const std::string& type, const ParamSet& params,
+             const SourceLocation& where);
+void integrator(ImportState& st, const std::string& type, const ParamSet& params,
+                const SourceLocation& where);
+// After WorldBegin's options are final: the camera's frame and the film's aspect.
+void finishOptions(ImportState& st);
+
+void shape(ImportState& st, const std::string& type, const ParamSet& params,
+           const SourceLocation& where, const std::string& includingDir);
+// Returns the new material's index.
+int material(ImportState& st, const std::string& type, const std::string& name,
+             const ParamSet& params, const SourceLocation& where);
+void areaLightSource(ImportState& st, const std::string& type, const ParamSet& params,
+                     const SourceLocation& where);
+void lightSource(ImportState& st, const std::string& type, const ParamSet& params,
+                 const SourceLocation& where);
+void texture(ImportState& st, const std::string& name, const std::string& colorType,
+             const std::string& type, const ParamSet& params, const SourceLocation& where);
+
+// RGB of a spectrum-valued parameter (rgb, or blackbody/spectrum where the
+// colour can be had); nullopt when absent.
+std::optional<Vec3f> rgbParam(ImportState& st, const ParamSet& params, const std::string& name);
+
+}  // namespace pathlab::pbrt
