@@ -29,6 +29,7 @@ fi
 [[ -x $pbrt ]] || { echo "vs_pbrt_scenes: not an executable: $pbrt" >&2; exit 2; }
 [[ -x $pathlab ]] || { echo "vs_pbrt_scenes: build pathlab first ($pathlab)" >&2; exit 2; }
 mkdir -p "$out"
+out=$(cd "$out" && pwd)
 trap 'rm -f "$out"/*.part.pfm' EXIT
 
 seconds() { local t0=$1 t1=$2; awk "BEGIN { printf \"%.3f\", $t1 - $t0 }"; }
@@ -57,7 +58,7 @@ for scene in "${scenes[@]}"; do
     paths=$((size * ysize * spp))
     if [[ ! -s $a ]]; then
         t0=$(now)
-        (cd "$dir" && "$pbrt" --quiet --nthreads 2 --spp "$spp" --outfile "$OLDPWD/$a.part.pfm" \
+        (cd "$dir" && "$pbrt" --quiet --nthreads 2 --spp "$spp" --outfile "$a.part.pfm" \
             "$(basename "$scene")") >/dev/null
         t1=$(now); mv "$a.part.pfm" "$a"; echo "$(seconds "$t0" "$t1")" >"$a.seconds"
     fi

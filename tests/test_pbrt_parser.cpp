@@ -154,6 +154,53 @@ TEST(PbrtTransform, ALightWithNormalsEmitsTowardsThem) {
     expectNear(frontOf(r.scene.meshes[0]), {0, 0, -1});
 }
 
+TEST(PbrtState, TransformBeginSavesTheWholeStateAsAttributeBeginDoes) {
+    // pbrt-v4 reads TransformBegin/End as AttributeBegin/End.
+    const ImportResult r =
+        load(world("TransformBegin\nAreaLightSource \"diffuse\"\n"
+                   "Translate 0 0 3\nAttributeEnd\n" +
+                   kTriangle));
+    ASSERT_EQ(r.scene.meshes.size(), 1u);
+    EXPECT_EQ(r.scene.meshes[0].emission.x, 0);
+    expectNear(r.scene.meshes[0].positions[0], {0, 0, 0});
+}
+
+TEST(PbrtState, ActiveTransformIsPartOfTheGraphicsState) {
+    const ImportResult r =
+        load(world("AttributeBegin\nActiveTransform EndTime\nTranslate 5 0 0\nAttributeEnd\n"
+                   "Translate 0 1 0\n" +
+                       kTriangle,
+                   "ActiveTransform EndTime\n"));
+    EXPECT_FALSE(r.notes.empty());                          // no motion blur: said once per use
+    expectNear(r.scene.meshes[0].positions[0], {0, 1, 0});  // WorldBegin reset it to All
+}
+
+TEST(PbrtState, OptionTakesANameAndAValue) {
+    const ImportResult r = load(world(kTriangle,
+                                      "Option \"disablepixeljitter\" true\n"
+                                      "Option \"seed\" 3\n"));
+    EXPECT_EQ(r.notes.size(), 2u);
+}
+
+TEST(PbrtState, ImportKeepsTheImportersGraphicsState) {
+    ScratchDir dir;
+    dir.write("part.pbrt", "Material \"conductor\"\nTranslate 0 0 7\n" + kTriangle +
+                               "\n"
+                               "MakeNamedMaterial \"m\" \"string type\" \"dielectric\"\n");
+    const std::string main = dir.write("main.pbrt", world("Import \"part.pbrt\"\n" + kTriangle +
+                                                          "\nNamedMaterial \"m\"\n" + kTriangle));
+    const ImportResult r = importPbrtFile(main);
+    ASSERT_EQ(r.scene.meshes.size(), 3u);
+    const auto type = [&](size_t i) {
+        return r.scene.materials[size_t(r.scene.meshes[i].material)].type;
+    };
+    EXPECT_EQ(type(0), MaterialType::Conductor);  // inside the import: its own state
+    expectNear(r.scene.meshes[0].positions[0], {0, 0, 7});
+    EXPECT_EQ(type(1), MaterialType::Diffuse);  // after it: the importer's state again
+    expectNear(r.scene.meshes[1].positions[0], {0, 0, 0});
+    EXPECT_EQ(type(2), MaterialType::Dielectric);  // named things come back
+}
+
 TEST(PbrtInclude, RelativeToTheIncludingFileAndDepthLimited) {
     ScratchDir dir;
     std::filesystem::create_directories(dir.path() / "geometry");
@@ -269,6 +316,17 @@ TEST(PbrtOptions, SamplerIntegratorFilterAndFilmDefaults) {
     EXPECT_EQ(mapped("\"paddedsobol\""), "sobol-owen");
     EXPECT_EQ(mapped("\"pmj02bn\""), "pmj02");
     EXPECT_EQ(mapped("\"independent\""), "independent");
+    // pbrt-v4's independent sampler takes 4 samples unless told.
+    EXPECT_EQ(load(world(kTriangle, "Sampler \"independent\"")).scene.defaults.samplesPerPixel, 4);
+    // No silent swaps: a randomization pathlab lacks is unsupported.
+    EXPECT_EQ(errorOf(world(kTriangle, "Sampler \"zsobol\" \"string randomization\" \"none\"")),
+              "test.pbrt:1:1: zsobol with randomization 'none' is not supported (--lenient "
+              "substitutes zsobol)");
+    // A later Film replaces an earlier one: its ISO scales the image once.
+    const ImportResult twice = load(world(kTriangle,
+                                          "Film \"rgb\" \"float iso\" 200\n"
+                                          "Film \"rgb\" \"float iso\" 200\n"));
+    EXPECT_FLOAT_EQ(twice.scene.film.scale, 2);
 }
 
 TEST(PbrtCamera, ALookAtPinholeBecomesTheClassicCamera) {

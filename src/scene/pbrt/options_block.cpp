@@ -121,7 +121,7 @@ void camera(ImportState& st, const std::string& type, const ParamSet& ps,
     // pbrt-v4's imaging ratio scales the image by the shutter's open time.
     const float open = ps.getFloat("shutteropen", 0), close = ps.getFloat("shutterclose", 1);
     if (!(close >= open)) throw errorAt(where, "camera: shutterclose is before shutteropen");
-    st.result.scene.film.scale *= close - open;
+    st.shutterTime = close - open;
     st.checkUnused(ps, "Camera \"" + type + "\"");
 }
 
@@ -139,13 +139,14 @@ void film(ImportState& st, const std::string& type, const ParamSet& ps,
                                  std::to_string(s.resolution.x) + "x" +
                                  std::to_string(s.resolution.y));
     float* crop = s.film.cropWindow;
+    crop[0] = 0, crop[1] = 1, crop[2] = 0, crop[3] = 1;  // a later Film replaces an earlier one
     if (floatArray(ps, "cropwindow", 4, crop) &&
         !(crop[0] >= 0 && crop[0] < crop[1] && crop[1] <= 1 && crop[2] >= 0 && crop[2] < crop[3] &&
           crop[3] <= 1))
         throw errorAt(where, "Film: cropwindow must be [x0 x1 y0 y1] within [0, 1], min < max");
     const float iso = ps.getFloat("iso", 100);
     if (!(iso > 0)) throw errorAt(where, "Film: iso must be positive");
-    s.film.scale *= iso / 100;
+    st.isoScale = iso / 100;
     if (ps.getFloat("whitebalance", 0) != 0)
         st.unsupported(where, "Film white balance", "no white balance");
     if (ps.getString("sensor", "cie1931") != "cie1931")
@@ -189,36 +190,53 @@ void pixelFilter(ImportState& st, const std::string& type, const ParamSet& ps,
     st.checkUnused(ps, "PixelFilter \"" + type + "\"");
 }
 
+// pbrt-v4's samplers (samplers.cpp, each Create) by family and randomization.
+// A combination pathlab has no sampler for is unsupported, not silently
+// swapped: a sampler study must know what it measured.
 void sampler(ImportState& st, const std::string& type, const ParamSet& ps,
              const SourceLocation& where) {
     RenderDefaults& d = st.result.scene.defaults;
-    const std::string randomization = ps.getString("randomization", "");
-    const auto scrambled = [&](const std::string& fallback) {
-        return randomization.empty() ? fallback : randomization;
-    };
+    const bool scrambles =
+        type == "halton" || type == "sobol" || type == "paddedsobol" || type == "zsobol";
+    const std::string r = scrambles ? ps.getString("randomization", "") : "";
+    if (!r.empty() && r != "none" && r != "permutedigits" && r != "owen" && r != "fastowen")
+        throw errorAt(ps.find("randomization")->where,
+                      "randomization must be none, permutedigits, owen or fastowen");
     std::string ours;
+    const auto nearest = [&](const std::string& what, const std::string& instead) {
+        st.unsupported(where, what, instead);
+        return instead;
+    };
     if (type == "independent") {
         ours = "independent";
     } else if (type == "stratified") {
         ours = "stratified";
         if (!ps.getBool("jitter", true))
             st.unsupported(where, "stratified sampling without jitter", "jittered strata");
-        const int xs = ps.getInt("xsamples", 4), ys = ps.getInt("ysamples", 4);
-        d.samplesPerPixel = std::max(1, xs * ys);
+        const int64_t xs = ps.getInt("xsamples", 4), ys = ps.getInt("ysamples", 4);
+        if (xs < 1 || ys < 1 || xs * ys > (1 << 24))
+            throw errorAt(where, "Sampler: xsamples × ysamples must be between 1 and 16777216");
+        d.samplesPerPixel = int(xs * ys);
     } else if (type == "halton") {
-        const std::string r = scrambled("permutedigits");
-        ours = r == "none" ? "halton" : r == "permutedigits" ? "halton-rd" : "halton-owen";
+        if (r == "fastowen")
+            throw errorAt(where,
+                          "halton does not take randomization \"fastowen\" (pbrt-v4 "
+                          "neither)");
+        ours = r == "none" ? "halton" : r == "owen" ? "halton-owen" : "halton-rd";
     } else if (type == "sobol") {
-        const std::string r = scrambled("fastowen");
-        ours = r == "none" ? "sobol" : r == "permutedigits" ? "sobol-xor" : "sobol-owen";
-        if (ours == "sobol-owen")
-            st.note(where,
-                    "pbrt-v4's global Owen-scrambled Sobol' maps to sobol-owen (padded "
-                    "Owen-scrambled Sobol' pairs)");
+        ours = r == "none"            ? "sobol"
+               : r == "permutedigits" ? "sobol-xor"
+                                      : nearest("pbrt-v4's global Owen-scrambled Sobol'",
+                                                "sobol-owen (padded Owen-scrambled pairs)");
+        if (ours != "sobol" && ours != "sobol-xor") ours = "sobol-owen";
     } else if (type == "paddedsobol") {
-        ours = "sobol-owen";
+        ours = r == "" || r == "owen" || r == "fastowen"
+                   ? "sobol-owen"
+                   : nearest("paddedsobol with randomization '" + r + "'", "sobol-owen");
     } else if (type == "zsobol") {
-        ours = "zsobol";
+        ours = r == "" || r == "owen" || r == "fastowen"
+                   ? "zsobol"
+                   : nearest("zsobol with randomization '" + r + "'", "zsobol");
     } else if (type == "pmj02bn") {
         ours = "pmj02";
     } else {
@@ -226,14 +244,13 @@ void sampler(ImportState& st, const std::string& type, const ParamSet& ps,
                                  "' (independent, stratified, halton, sobol, paddedsobol, zsobol, "
                                  "pmj02bn)");
     }
-    if (!randomization.empty() && randomization != "none" && randomization != "permutedigits" &&
-        randomization != "owen" && randomization != "fastowen")
-        throw errorAt(ps.find("randomization")->where,
-                      "randomization must be none, permutedigits, owen or fastowen");
     d.sampler = ours;
-    if (type != "stratified") d.samplesPerPixel = ps.getInt("pixelsamples", 16);
+    // pbrt-v4's IndependentSampler takes 4 samples unless told; the others 16.
+    if (type != "stratified")
+        d.samplesPerPixel = ps.getInt("pixelsamples", type == "independent" ? 4 : 16);
     if (d.samplesPerPixel < 1 || d.samplesPerPixel > (1 << 24))
         throw errorAt(where, "Sampler: pixelsamples must be between 1 and 16777216");
+    d.hasSeed = false;
     if (ps.find("seed")) {
         const int seed = ps.getInt("seed", 0);
         if (seed < 0) throw errorAt(where, "Sampler: seed must not be negative");
@@ -271,12 +288,14 @@ namespace pathlab::pbrt {
 // exactly as the same camera written in pathlab's JSON (scenes/cornell-box.pbrt
 // and the built-in cornell-box, bit for bit).
 void finishOptions(ImportState& st) {
+    // pbrt-v4's imaging ratio: exposure time × ISO / 100.
+    st.result.scene.film.scale = st.shutterTime * st.isoScale;
     Camera& c = st.result.scene.camera;
     const auto worldFromCamera = st.cameraFromWorld.inverse();
     if (!worldFromCamera || !worldFromCamera->isAffine())
-        throw InputError(st.result.scene.name +
-                         ": the camera transform is singular or projective (check the "
-                         "transforms before Camera)");
+        throw errorAt(st.cameraWhere,
+                      "the camera transform is singular or projective (check the transforms "
+                      "before Camera)");
     c.eye = worldFromCamera->point({0, 0, 0});
     c.axisX = worldFromCamera->vector({1, 0, 0});
     c.axisY = worldFromCamera->vector({0, 1, 0});

@@ -16,7 +16,7 @@ class Parser {
   public:
     explicit Parser(ImportState& st) : st_(st) {}
     void pushSource(std::unique_ptr<Tokenizer> tok, std::string dir) {
-        sources_.push_back({std::move(tok), std::move(dir)});
+        sources_.push_back({std::move(tok), std::move(dir), std::nullopt});
     }
     void run();
 
@@ -24,11 +24,15 @@ class Parser {
     struct Source {
         std::unique_ptr<Tokenizer> tok;
         std::string dir;  // of the file, for relative paths
+        // Import: the importing file's graphics state, restored at the end
+        // (pbrt-v4 parses an imported file with a copy of it; only named
+        // things and shapes come back).
+        std::optional<GraphicsState> restore;
     };
     struct Saved {
         GraphicsState gs;
         SourceLocation where;
-        enum Kind { Attribute, Transform, Object } kind;
+        enum Kind { Attribute, Object } kind;
     };
 
     Token next();
@@ -41,33 +45,29 @@ class Parser {
     void transformDirective(const std::string& name, const SourceLocation& where);
     void pushState(Saved::Kind kind, const SourceLocation& where);
     void popState(Saved::Kind kind, const Token& t);
-    void include(const SourceLocation& where);
+    void include(const SourceLocation& where, bool import);
     void requireWorld(const Token& t, bool world);
     void typedDirective(const Token& t);
     void applyTransform(const Matrix4& m) {
-        if (activeStart_) st_.gs.ctm = st_.gs.ctm * m;
+        if (st_.gs.activeStart) st_.gs.ctm = st_.gs.ctm * m;
     }
 
     ImportState& st_;
     std::vector<Source> sources_;
     std::optional<Token> peeked_;
     std::vector<Saved> stack_;
-    bool activeStart_ = true;  // ActiveTransform includes the start time
     bool sawWorld_ = false;
 };
 
+// The next token of the current file: a directive never runs on into the
+// file after it (run() moves on at a file's end).
 Token Parser::next() {
     if (peeked_) {
         Token t = std::move(*peeked_);
         peeked_.reset();
         return t;
     }
-    while (!sources_.empty()) {
-        Token t = sources_.back().tok->next();
-        if (t.kind != TokenKind::End || sources_.size() == 1) return t;
-        sources_.pop_back();  // the end of an included file
-    }
-    return {};
+    return sources_.back().tok->next();
 }
 
 const Token& Parser::peek() {
@@ -147,24 +147,18 @@ void Parser::pushState(Saved::Kind kind, const SourceLocation& where) {
 
 void Parser::popState(Saved::Kind kind, const Token& t) {
     if (stack_.empty() || stack_.back().kind != kind) {
-        const char* opener = kind == Saved::Attribute   ? "AttributeBegin"
-                             : kind == Saved::Transform ? "TransformBegin"
-                                                        : "ObjectBegin";
+        const char* opener = kind == Saved::Attribute ? "AttributeBegin" : "ObjectBegin";
         throw errorAt(t.where, "unbalanced " + t.text + ": no " + opener + " is open" +
                                    (stack_.empty() ? ""
                                                    : " (the innermost block opened at " +
                                                          stack_.back().where.str() + ")"));
     }
-    if (kind == Saved::Transform) {
-        st_.gs.ctm = stack_.back().gs.ctm;  // TransformEnd restores the CTM only
-    } else {
-        st_.gs = std::move(stack_.back().gs);
-    }
+    st_.gs = std::move(stack_.back().gs);
     stack_.pop_back();
 }
 
-void Parser::include(const SourceLocation& where) {
-    const std::string name = stringArg("Include");
+void Parser::include(const SourceLocation& where, bool import) {
+    const std::string name = stringArg(import ? "Import" : "Include");
     if (sources_.size() >= kMaxIncludeDepth)
         throw errorAt(where, "Include nested more than " + std::to_string(kMaxIncludeDepth) +
                                  " deep (does a file include itself?)");
@@ -178,11 +172,12 @@ void Parser::include(const SourceLocation& where) {
     if (fs::path(name).is_absolute()) path = name;
     auto tok = Tokenizer::fromFile(path.string(), &where);
     pushSource(std::move(tok), path.parent_path().string());
+    if (import) sources_.back().restore = st_.gs;
 }
 
 void Parser::transformDirective(const std::string& name, const SourceLocation& where) {
     if (name == "Identity") {
-        if (activeStart_) st_.gs.ctm = Matrix4();
+        if (st_.gs.activeStart) st_.gs.ctm = Matrix4();
     } else if (name == "Translate") {
         const auto v = numbers(name, 3, false);
         applyTransform(Matrix4::translate(v[0], v[1], v[2]));
@@ -205,7 +200,7 @@ void Parser::transformDirective(const std::string& name, const SourceLocation& w
         const auto v = numbers(name, 16, true);
         const Matrix4 m = Matrix4::fromColumnMajor(v.data());
         if (name == "Transform") {
-            if (activeStart_) st_.gs.ctm = m;
+            if (st_.gs.activeStart) st_.gs.ctm = m;
         } else {
             applyTransform(m);
         }
@@ -231,7 +226,13 @@ bool isTransformDirective(const std::string& n) {
 void Parser::run() {
     while (true) {
         const Token t = next();
-        if (t.kind == TokenKind::End) break;
+        if (t.kind == TokenKind::End) {
+            if (sources_.size() == 1) break;
+            // The end of an included or imported file.
+            if (sources_.back().restore) st_.gs = std::move(*sources_.back().restore);
+            sources_.pop_back();
+            continue;
+        }
         if (t.kind != TokenKind::Word)
             throw errorAt(t.where, "expected a directive, got '" + t.text + "'");
         directive(t);
@@ -254,9 +255,9 @@ void Parser::directive(const Token& t) {
     } else if (d == "ActiveTransform") {
         const Token which = next();
         if (which.text == "StartTime" || which.text == "All") {
-            activeStart_ = true;
+            st_.gs.activeStart = true;
         } else if (which.text == "EndTime") {
-            activeStart_ = false;
+            st_.gs.activeStart = false;
             st_.note(t.where, "no motion blur: transforms at EndTime are ignored");
         } else {
             throw errorAt(which.where, "ActiveTransform expects StartTime, EndTime or All, got '" +
@@ -266,15 +267,16 @@ void Parser::directive(const Token& t) {
         numbers(d, 2, false);
         st_.note(t.where, "no motion blur: TransformTimes ignored");
     } else if (d == "Include" || d == "Import") {
-        include(t.where);
+        include(t.where, d == "Import");
     } else if (d == "AttributeBegin") {
         pushState(Saved::Attribute, t.where);
     } else if (d == "AttributeEnd") {
         popState(Saved::Attribute, t);
     } else if (d == "TransformBegin") {
-        pushState(Saved::Transform, t.where);
+        // pbrt-v4 reads the deprecated TransformBegin/End as AttributeBegin/End.
+        pushState(Saved::Attribute, t.where);
     } else if (d == "TransformEnd") {
-        popState(Saved::Transform, t);
+        popState(Saved::Attribute, t);
     } else if (d == "Attribute") {
         const std::string target = stringArg(d);
         if (target != "shape" && target != "light" && target != "material" && target != "medium" &&
@@ -285,7 +287,11 @@ void Parser::directive(const Token& t) {
                               target + "'");
         st_.gs.attributes[target].merge(params());
     } else if (d == "Option") {
-        params();
+        stringArg(d);  // pbrt-v4: a name, then one value
+        const Token value = next();
+        if (value.kind == TokenKind::End || value.kind == TokenKind::OpenBracket ||
+            value.kind == TokenKind::CloseBracket)
+            throw errorAt(value.where, "Option expects a value after its name");
         st_.note(t.where, "Option ignored (pathlab has its own command-line options)");
     } else if (d == "ColorSpace") {
         const std::string cs = stringArg(d);
@@ -295,6 +301,7 @@ void Parser::directive(const Token& t) {
         st_.inWorld = sawWorld_ = true;
         finishOptions(st_);
         st_.gs.ctm = Matrix4();
+        st_.gs.activeStart = true;
         st_.namedCoordinateSystems["world"] = st_.gs.ctm;
     } else if (d == "WorldEnd") {
         st_.note(t.where, "WorldEnd (pbrt-v3) ignored");
@@ -339,6 +346,7 @@ void Parser::typedDirective(const Token& t) {
     if (d == "Camera") {
         requireWorld(t, false);
         st_.cameraFromWorld = st_.gs.ctm;
+        st_.cameraWhere = t.where;
         if (auto inv = st_.gs.ctm.inverse()) st_.namedCoordinateSystems["camera"] = *inv;
         optionsDirective(camera);
     } else if (d == "Film") {

@@ -27,6 +27,7 @@ struct GraphicsState {
     bool reverseOrientation = false;
     int material = -1;  // index into the scene's materials; -1: pbrt-v4's default diffuse
     std::optional<AreaLight> areaLight;
+    bool activeStart = true;  // ActiveTransform includes the start time
     // Attribute "shape" | "light" | "material" | "medium" | "texture" defaults.
     std::map<std::string, ParamSet> attributes;
 };
@@ -39,6 +40,8 @@ class ImportState {
     GraphicsState gs;
     bool inWorld = false;
     Matrix4 cameraFromWorld;  // the CTM at Camera
+    SourceLocation cameraWhere;
+    float shutterTime = 1, isoScale = 1;  // the film's scale is their product
     std::map<std::string, Matrix4> namedCoordinateSystems;
     std::map<std::string, int> namedMaterials;  // name → material index
     std::map<std::string, int> objects;         // name → index into scene.objects

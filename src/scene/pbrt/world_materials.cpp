@@ -48,8 +48,17 @@ void markAllUsed(const ParamSet& ps) {
 // GGX alpha = sqrt(roughness) unless remaproughness is false
 // (TrowbridgeReitzDistribution::RoughnessToAlpha).
 float ggxAlpha(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
-    const float r = ps.getFloat("roughness", 0);
-    const float u = ps.getFloat("uroughness", r), v = ps.getFloat("vroughness", r);
+    // A roughness texture has no value yet: its default stands in.
+    const auto value = [&](const std::string& name, float fallback) {
+        const Param* p = ps.find(name);
+        if (p && p->type == ParamType::Texture) {
+            st.unsupported(p->where, "a texture for '" + name + "'", "its default");
+            return fallback;
+        }
+        return ps.getFloat(name, fallback);
+    };
+    const float r = value("roughness", 0);
+    const float u = value("uroughness", r), v = value("vroughness", r);
     if (u != v) st.unsupported(where, "anisotropic roughness", "their mean, isotropic");
     const float rough = 0.5f * (u + v);
     if (rough < 0) throw errorAt(where, "roughness must not be negative");

@@ -213,7 +213,10 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
         if (!(r > 0)) throw errorAt(where, "sphere: radius must be positive");
         const bool whole = zMin <= -r && zMax >= r && phiMax >= 360;
         const auto scale = similarityScale(st.gs.ctm);
-        if (whole && scale && st.gs.ctm.isAffine() && !st.gs.areaLight) {
+        // An exact sphere has no orientation; a reversed one (inside out, as
+        // for a dielectric's eta) is made of triangles, which do.
+        if (whole && scale && st.gs.ctm.isAffine() && !st.gs.areaLight &&
+            !st.gs.reverseOrientation) {
             Sphere sp{st.gs.ctm.point({0, 0, 0}), r * *scale,
                       st.gs.material >= 0 ? st.gs.material : st.defaultMaterial()};
             SceneDescription& s = st.result.scene;
