@@ -37,7 +37,7 @@ now() { date +%s.%N; }
 
 # Per-channel means of a PFM image (python3-numpy, installed by scripts/setup.sh).
 means() {
-    python3 - "$1" <<'PY'
+    "${PYTHON:-/usr/bin/python3}" - "$1" <<'PY'
 import sys, numpy as np
 with open(sys.argv[1], 'rb') as f:
     kind = f.readline().strip(); w, h = map(int, f.readline().split()); scale = float(f.readline())

@@ -10,7 +10,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   # pbrt-v4 scenes: Loop subdivision through OpenSubdiv; assimp only for the PLY
   # benchmark that measures it beside pathlab's own reader (docs/pbrt-format.md).
-  libassimp-dev libosd-dev
+  libassimp-dev libosd-dev zlib1g-dev
   # The wolf scene, when it must be fetched from Debian's 0ad-data package.
   libarchive-tools
   # The report: figures with matplotlib; its test drives Chromium from Node.

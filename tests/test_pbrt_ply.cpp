@@ -2,6 +2,7 @@
 // assimp-testmodels, and files written here for each format and each way a
 // file can be broken.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <bit>
 #include <cmath>
@@ -227,6 +228,29 @@ TEST(PbrtPly, AsciiAndBothBinaryByteOrdersGiveTheSameMesh) {
     }
     expectSameMesh(ascii, le);
     expectSameMesh(be, le);
+}
+
+// pbrt-v4's published scenes ship their meshes as .ply.gz.
+TEST(PbrtPly, GzipCompressedFilesReadAsTheirContent) {
+    const ScratchDir dir;
+    const Source s;
+    for (const bool binary : {false, true}) {
+        const std::string text = binary ? binaryPly(s, false) : asciiPly(s);
+        const std::string gz = (dir.path() / (binary ? "b.ply.gz" : "a.ply.gz")).string();
+        gzFile f = gzopen(gz.c_str(), "wb");
+        ASSERT_NE(f, nullptr);
+        ASSERT_EQ(gzwrite(f, text.data(), unsigned(text.size())), int(text.size()));
+        ASSERT_EQ(gzclose(f), Z_OK);
+        expectSameMesh(loadPlyMesh(gz), loadPlyMesh(dir.write("plain.ply", text)));
+        // Cut short, the compressed stream ends early: a truncated file.
+        std::string bytes;
+        {
+            std::ifstream in(gz, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        const std::string cut = dir.write("cut.ply.gz", bytes.substr(0, bytes.size() / 2));
+        EXPECT_NE(inputErrorOf([&] { loadPlyMesh(cut); }).find("cut.ply.gz"), std::string::npos);
+    }
 }
 
 TEST(PbrtPly, UvNamesAndValueTypesPbrtAccepts) {

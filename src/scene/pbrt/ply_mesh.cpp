@@ -71,10 +71,10 @@ class PlyReader {
     void skipList(In& in, const Property& p);
 
     struct Closer {
-        void operator()(std::FILE* f) const { std::fclose(f); }
+        void operator()(gzFile f) const { gzclose(f); }
     };
     std::string path_;
-    std::unique_ptr<std::FILE, Closer> file_;
+    std::unique_ptr<gzFile_s, Closer> file_;
     std::unique_ptr<Source> source_;
     uint64_t fileSize_ = 0, bodySize_ = 0;
     Format format_ = Format::Ascii;
@@ -89,9 +89,13 @@ void PlyReader::open() {
     std::error_code ec;
     if (!fs::is_regular_file(path_, ec)) fail("does not exist or is not a file");
     fileSize_ = fs::file_size(path_, ec);
-    file_.reset(std::fopen(path_.c_str(), "rb"));
+    file_.reset(gzopen(path_.c_str(), "rb"));
     if (!file_ || ec) fail("cannot be read");
     if (fileSize_ == 0) fail("is empty");
+    gzbuffer(file_.get(), 1 << 17);
+    // A gzip file's body is at most deflate's largest ratio (1032:1) times
+    // its size: the bound below on what the header may declare.
+    if (!gzdirect(file_.get())) fileSize_ *= 1032;
     source_ = std::make_unique<Source>(file_.get());
 }
 
