@@ -73,9 +73,19 @@ void appendQuad(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2, Vec3f p3) {
 void transformMesh(Mesh& mesh, const Affine& xf) {
     for (Vec3f& p : mesh.positions) p = xf.point(p);
     for (Vec3f& n : mesh.normals) n = xf.normal(n);
-    if (xf.determinant() < 0)
-        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-            std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+    if (xf.determinant() < 0) flipWinding(mesh);
+}
+
+void flipWinding(Mesh& mesh) {
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+        std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+}
+
+bool lightTriangleHasArea(const Mesh& mesh, size_t t, float extent2) {
+    const float a = length(triangleNormalArea(mesh.positions[mesh.indices[3 * t]],
+                                              mesh.positions[mesh.indices[3 * t + 1]],
+                                              mesh.positions[mesh.indices[3 * t + 2]]));
+    return a > 1e-12f * extent2 && std::isfinite(a);
 }
 
 }  // namespace pathlab

@@ -37,6 +37,16 @@ inline Vec3f triangleNormalArea(Vec3f p0, Vec3f p1, Vec3f p2) {
     return cross(p1 - p0, p2 - p0);
 }
 
+// Whether triangle t of `mesh` has area enough to be sampled as part of a
+// light: its area vector's length above 10⁻¹² of the mesh's squared extent
+// (so a tiny but valid light in millimetres or kilometres is judged alike),
+// and finite. `extent2` is dot(e, e) of meshBounds(mesh).extent().
+bool lightTriangleHasArea(const Mesh& mesh, size_t t, float extent2);
+
+// Turns every triangle over (swaps its last two vertices): its front side,
+// the one (p1−p0)×(p2−p0) points to, becomes its back.
+void flipWinding(Mesh& mesh);
+
 // Appends one triangle with its own three vertices.
 void appendTriangle(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2);
 // Appends a planar quad p0 p1 p2 p3 (in order around its boundary) as the two

@@ -105,17 +105,10 @@ void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const st
         fail(source, what + " has a negative or non-finite emission " + str(mesh.emission));
     if (!isBlack(mesh.emission)) {
         if (mesh.indices.empty()) fail(source, "light " + what + " has no triangles");
-        // Area relative to the squared size of the light, so a tiny but valid
-        // light in millimetres or kilometres is judged alike.
         const Vec3f ext = meshBounds(mesh).extent();
-        const float scale2 = dot(ext, ext);
-        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-            const Vec3f a = triangleNormalArea(mesh.positions[mesh.indices[3 * t]],
-                                               mesh.positions[mesh.indices[3 * t + 1]],
-                                               mesh.positions[mesh.indices[3 * t + 2]]);
-            if (!(length(a) > 1e-12f * scale2) || !std::isfinite(length(a)))
+        for (size_t t = 0; t < mesh.triangleCount(); ++t)
+            if (!lightTriangleHasArea(mesh, t, dot(ext, ext)))
                 fail(source, "light " + what + " has a zero-area triangle " + std::to_string(t));
-        }
     }
 }
 

@@ -41,6 +41,13 @@ size_t arityOf(ParamType t) {
     }
 }
 
+bool isNumericType(ParamType t) {
+    return t != ParamType::String && t != ParamType::Texture && t != ParamType::Bool &&
+           t != ParamType::Spectrum;
+}
+
+}  // namespace
+
 double parseNumber(const Token& t) {
     if (t.kind != TokenKind::Number)
         throw errorAt(t.where, "expected a number, got '" + t.text + "'");
@@ -51,13 +58,6 @@ double parseNumber(const Token& t) {
         throw errorAt(t.where, "'" + t.text + "' is not a finite number");
     return v;
 }
-
-bool isNumericType(ParamType t) {
-    return t != ParamType::String && t != ParamType::Texture && t != ParamType::Bool &&
-           t != ParamType::Spectrum;
-}
-
-}  // namespace
 
 const char* paramTypeName(ParamType type) {
     for (const TypeName& t : kTypes)

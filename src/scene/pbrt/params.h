@@ -30,6 +30,10 @@ enum class ParamType {
 };
 const char* paramTypeName(ParamType type);
 
+// The value of a number token: InputError at the token unless it is a
+// Number that reads as a finite double, all of it.
+double parseNumber(const Token& t);
+
 struct Param {
     ParamType type;
     std::string name;

@@ -90,9 +90,7 @@ double Parser::numberArg(const std::string& directive) {
         throw errorAt(t.where, directive + " expects a number" +
                                    (t.kind == TokenKind::End ? ", got the end of the file"
                                                              : ", got '" + t.text + "'"));
-    ParamSet scratch;  // reuse the parameter parser's strict number check
-    scratch.add("float x", t.where, {t});
-    return scratch.all()[0].numbers[0];
+    return parseNumber(t);
 }
 
 std::vector<double> Parser::numbers(const std::string& directive, size_t count, bool bracketed) {

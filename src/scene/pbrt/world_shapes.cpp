@@ -64,21 +64,17 @@ void faceNormalsForward(Mesh& m) {
     }
 }
 
-// Leaves out an emitter's triangles of no area (as validateScene judges
-// area: relative to the mesh's extent). They emit no power, but a light is
+// Leaves out an emitter's triangles of no area (lightTriangleHasArea, the
+// test validateScene makes). They emit no power, but a light is
 // sampled by area, where they would have no density.
 void dropDegenerateTriangles(Mesh& m) {
     const Vec3f ext = meshBounds(m).extent();
-    const float scale2 = dot(ext, ext);
     std::vector<uint32_t> kept;
     kept.reserve(m.indices.size());
-    for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-        const float a =
-            length(triangleNormalArea(m.positions[m.indices[i]], m.positions[m.indices[i + 1]],
-                                      m.positions[m.indices[i + 2]]));
-        if (a > 1e-12f * scale2 && std::isfinite(a))
-            kept.insert(kept.end(), m.indices.begin() + long(i), m.indices.begin() + long(i) + 3);
-    }
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+        if (lightTriangleHasArea(m, t, dot(ext, ext)))
+            kept.insert(kept.end(), m.indices.begin() + long(3 * t),
+                        m.indices.begin() + long(3 * t) + 3);
     m.indices = std::move(kept);
 }
 
@@ -139,8 +135,7 @@ void place(ImportState& st, Mesh mesh, const std::string& shapeName, const Sourc
     transformMesh(mesh, gs.ctm.toAffine());
     if (gs.reverseOrientation) {
         for (Vec3f& n : mesh.normals) n = -n;
-        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-            std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+        flipWinding(mesh);
     }
     mesh.material = gs.material >= 0 ? gs.material : st.defaultMaterial();
     mesh.name = shapeName + "@" + std::to_string(where.line);
