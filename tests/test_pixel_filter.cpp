@@ -14,6 +14,7 @@
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
+#include "scene_test_util.h"
 
 namespace pathlab {
 namespace {
@@ -254,19 +255,7 @@ TEST(FilterSampling, RejectsMeaninglessParameters) {
 // A closed cube [−1, 1]³ of two-sided emitters of radiance Le seen from
 // inside with max depth 0: every camera ray returns exactly Le.
 SceneDescription emitterCube(float Le) {
-    SceneDescription s;
-    s.materials.push_back(Material{"wall", MaterialType::Diffuse, Vec3f(0.5f)});
-    Mesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back({i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f});
-    const unsigned faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                  {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-    for (const auto& f : faces)
-        for (unsigned idx : {f[0], f[1], f[2], f[0], f[2], f[3]}) m.indices.push_back(idx);
-    m.emission = Vec3f(Le);
-    m.twoSided = true;
-    s.meshes.push_back(m);
-    s.camera = Camera{{0.1f, 0.2f, 0.3f}, {0.5f, 0.1f, -1.0f}, {0, 1, 0}, 70};
+    SceneDescription s = furnaceCube(0.5f, Le);
     s.resolution = {20, 16};
     return s;
 }

@@ -9,31 +9,10 @@
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
+#include "scene_test_util.h"
 
 namespace pathlab {
 namespace {
-
-// A closed cube [−1,1]³ of two-sided emitters with Lambertian albedo `albedo`,
-// seen from inside: the radiance is Le·Σ_{k=0}^{D} a^k after D bounces, Le/(1−a)
-// in the limit (the "white furnace").
-SceneDescription furnace(float albedo, float emission) {
-    SceneDescription s;
-    s.materials.push_back(Material{"wall", MaterialType::Diffuse, Vec3f(albedo)});
-    Mesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back({i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f});
-    // Faces as quads of corner indices, each split into two triangles.
-    const unsigned faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                  {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-    for (const auto& f : faces)
-        for (unsigned idx : {f[0], f[1], f[2], f[0], f[2], f[3]}) m.indices.push_back(idx);
-    m.emission = Vec3f(emission);
-    m.twoSided = true;
-    s.meshes.push_back(m);
-    s.camera = Camera{{0.1f, 0.2f, 0.3f}, {0.5f, 0.1f, -1.0f}, {0, 1, 0}, 70};
-    s.resolution = {24, 24};
-    return s;
-}
 
 struct ImageMean {
     double mean, standardError;
@@ -49,7 +28,7 @@ ImageMean meanOf(const RenderOutput& out) {
 
 TEST(WhiteFurnace, RadianceIsEmissionOverOneMinusAlbedo) {
     const float a = 0.5f, Le = 1.0f;
-    const RenderScene scene(furnace(a, Le));
+    const RenderScene scene(furnaceCube(a, Le));
     for (const SamplerInfo& info : samplerInfos()) {
         RenderSettings s;
         s.sampler = info.name;
@@ -65,7 +44,7 @@ TEST(WhiteFurnace, RadianceIsEmissionOverOneMinusAlbedo) {
 TEST(MaxDepth, CountsLikePbrt) {
     // Without roulette the furnace's radiance after D bounces is Le·(1 − a^{D+1})/(1 − a).
     const float a = 0.6f;
-    const RenderScene scene(furnace(a, 1.0f));
+    const RenderScene scene(furnaceCube(a, 1.0f));
     for (int depth : {0, 1, 2, 5}) {
         RenderSettings s;
         s.samplesPerPixel = 32;
@@ -85,7 +64,7 @@ TEST(RouletteDepth, EndsPathsOnlyAfterItsBouncesAndStaysUnbiased) {
     // render without roulette bit for bit. Every start depth stays unbiased.
     const float a = 0.6f;
     const int maxDepth = 5;
-    const RenderScene scene(furnace(a, 1.0f));
+    const RenderScene scene(furnaceCube(a, 1.0f));
     RenderSettings s;
     s.samplesPerPixel = 32;
     s.maxDepth = maxDepth;
@@ -111,7 +90,7 @@ TEST(RouletteDepth, EndsPathsOnlyAfterItsBouncesAndStaysUnbiased) {
 }
 
 TEST(NonFiniteGuard, NaNSamplesNeverReachTheImage) {
-    SceneDescription desc = furnace(0.5f, 1.0f);
+    SceneDescription desc = furnaceCube(0.5f, 1.0f);
     desc.materials[0].albedo = Vec3f(std::nanf(""));
     const RenderScene scene(desc);
     RenderSettings s;
@@ -122,7 +101,7 @@ TEST(NonFiniteGuard, NaNSamplesNeverReachTheImage) {
 }
 
 TEST(Determinism, IdenticalBytesForAnyThreadCount) {
-    SceneDescription desc = furnace(0.7f, 1.0f);
+    SceneDescription desc = furnaceCube(0.7f, 1.0f);
     desc.resolution = {37, 29};  // tiles of unequal size
     const RenderScene scene(desc);
     for (const char* sampler : {"independent", "standard"}) {
@@ -146,7 +125,7 @@ TEST(Determinism, IdenticalBytesForAnyThreadCount) {
 }
 
 TEST(Seeds, DifferentSeedsGiveDifferentImages) {
-    const RenderScene scene(furnace(0.7f, 1.0f));
+    const RenderScene scene(furnaceCube(0.7f, 1.0f));
     RenderSettings s;
     s.samplesPerPixel = 2;
     const RenderOutput a = render(scene, s);
