@@ -375,14 +375,16 @@ TEST(Instancing, MemoryGrowsWithTheUniqueGeometryNotTheInstanceCount) {
                                           Affine::rotation({0, 1, 0}, float(7 * i))});
         return s;
     };
-    const EmbreeAccel one(placed(1)), hundred(placed(100));
+    const SceneDescription sceneOne = placed(1), sceneHundred = placed(100);
+    const EmbreeAccel one(sceneOne), hundred(sceneHundred);
     std::printf("Embree bytes: 1 instance %zu, 100 instances %zu (+%.2f%%)\n", one.embreeBytes(),
                 hundred.embreeBytes(),
                 100.0 * (double(hundred.embreeBytes()) / double(one.embreeBytes()) - 1));
     EXPECT_LT(double(hundred.embreeBytes()), 1.05 * double(one.embreeBytes()));
     // The count does follow the geometry: two flattened copies cost about
     // twice as much as one.
-    const EmbreeAccel two(flattened(placed(2)));
+    const SceneDescription sceneTwo = flattened(placed(2));
+    const EmbreeAccel two(sceneTwo);
     std::printf("Embree bytes: 2 flattened copies %zu\n", two.embreeBytes());
     EXPECT_GT(double(two.embreeBytes()), 1.8 * double(one.embreeBytes()));
 }

@@ -5,11 +5,17 @@
 #include <limits>
 
 #include "render/sphere_hit.h"
+#include "scene/mesh_utils.h"
 
 namespace pathlab {
 
 RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     : desc_(std::move(desc)) {
+    // Embree shares the meshes' positions and indices (the description outlives
+    // the accelerator and is not changed after this).
+    for (Mesh& mesh : desc_.meshes) reserveForSharing(mesh);
+    for (InstancedObject& object : desc_.objects)
+        for (Mesh& mesh : object.meshes) reserveForSharing(mesh);
     accel_ = std::make_unique<EmbreeAccel>(desc_);
     const Vec3f lo = accel_->boundsMin(), hi = accel_->boundsMax();
     const float extent = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),

@@ -18,21 +18,37 @@ namespace {
 // traces faster, so larger scenes keep it.
 constexpr size_t kMaxTwoLevelGeometries = 16;
 
+// Embree reads a buffer's last element with a 16-byte load, so a buffer it
+// shares must hold 4 readable bytes past the data: a vector whose capacity
+// exceeds its size does (Mesh::reserveForSharing).
+template <typename T>
+bool shareable(const std::vector<T>& v) {
+    return (v.capacity() - v.size()) * sizeof(T) >= 4;
+}
+
+// The mesh's positions and indices go to Embree as they are when it can share
+// them (no copy: 24 bytes per triangle of a typical mesh), else copied.
 void attachMesh(RTCDevice device, RTCScene scene, const Mesh& mesh) {
+    static_assert(sizeof(Vec3f) == 3 * sizeof(float));
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          mesh.positions.size()));
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        v[3 * i] = mesh.positions[i].x;
-        v[3 * i + 1] = mesh.positions[i].y;
-        v[3 * i + 2] = mesh.positions[i].z;
+    const size_t vertices = mesh.positions.size(), triangles = mesh.triangleCount();
+    if (shareable(mesh.positions)) {
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   mesh.positions.data(), 0, sizeof(Vec3f), vertices);
+    } else {
+        void* v = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                          sizeof(Vec3f), vertices);
+        std::memcpy(v, mesh.positions.data(), vertices * sizeof(Vec3f));
     }
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                3 * sizeof(unsigned), mesh.triangleCount()));
-    std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+    if (shareable(mesh.indices)) {
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                   mesh.indices.data(), 0, 3 * sizeof(unsigned), triangles);
+    } else {
+        void* idx = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                            3 * sizeof(unsigned), triangles);
+        std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+    }
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);

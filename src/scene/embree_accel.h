@@ -78,7 +78,10 @@ struct RayLanes {
 
 class EmbreeAccel {
   public:
+    // The accelerator may use the meshes' positions and indices in place (see
+    // reserveForSharing): `scene` must outlive it unchanged, hence no temporaries.
     explicit EmbreeAccel(const SceneDescription& scene);
+    explicit EmbreeAccel(SceneDescription&&) = delete;
     ~EmbreeAccel();
     EmbreeAccel(const EmbreeAccel&) = delete;
     EmbreeAccel& operator=(const EmbreeAccel&) = delete;

@@ -76,6 +76,11 @@ void transformMesh(Mesh& mesh, const Affine& xf) {
     if (xf.determinant() < 0) flipWinding(mesh);
 }
 
+void reserveForSharing(Mesh& mesh) {
+    mesh.positions.reserve(mesh.positions.size() + 1);
+    mesh.indices.reserve(mesh.indices.size() + 1);
+}
+
 void flipWinding(Mesh& mesh) {
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
         std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);

@@ -47,6 +47,11 @@ bool lightTriangleHasArea(const Mesh& mesh, size_t t, float extent2);
 // the one (p1−p0)×(p2−p0) points to, becomes its back.
 void flipWinding(Mesh& mesh);
 
+// Room for one more element after the positions and the indices (a reallocation
+// only when there is none), so that Embree can use them in place rather than
+// copy them: it reads a buffer's last element with a 16-byte load.
+void reserveForSharing(Mesh& mesh);
+
 // Appends one triangle with its own three vertices.
 void appendTriangle(Mesh& mesh, Vec3f p0, Vec3f p1, Vec3f p2);
 // Appends a planar quad p0 p1 p2 p3 (in order around its boundary) as the two

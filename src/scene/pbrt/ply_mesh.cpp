@@ -265,6 +265,7 @@ void PlyReader::skipInstance(In& in, const Element& e) {
 
 template <typename In>
 void PlyReader::readVertices(In& in, const Element& e) {
+    mesh_.positions.reserve(e.count + 1);  // + 1: see reserveForSharing
     mesh_.positions.resize(e.count);
     if (hasNormals_) mesh_.normals.resize(e.count);
     if (hasUvs_) mesh_.uvs.resize(e.count);
@@ -291,7 +292,7 @@ void PlyReader::readVertices(In& in, const Element& e) {
 template <typename In>
 void PlyReader::readFaces(In& in, const Element& e) {
     const int64_t nv = int64_t(vertex_->count);
-    mesh_.indices.reserve(3 * e.count);
+    mesh_.indices.reserve(3 * e.count + 1);
     for (size_t i = 0; i < e.count; ++i) {
         for (const Property& p : e.props) {
             if (p.slot != kIndices) {
