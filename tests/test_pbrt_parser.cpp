@@ -312,6 +312,10 @@ TEST(PbrtOptions, SamplerIntegratorFilterAndFilmDefaults) {
         return load(world(kTriangle, "Sampler " + s)).scene.defaults.sampler;
     };
     EXPECT_EQ(mapped("\"sobol\" \"string randomization\" \"none\""), "sobol");
+    // pbrt-v4's sobol scrambles with fastowen unless told.
+    EXPECT_EQ(mapped("\"sobol\""), "sobol-global-owen");
+    EXPECT_EQ(mapped("\"sobol\" \"string randomization\" \"owen\""), "sobol-global-owen");
+    EXPECT_EQ(mapped("\"sobol\" \"string randomization\" \"permutedigits\""), "sobol-xor");
     EXPECT_EQ(mapped("\"halton\" \"string randomization\" \"owen\""), "halton-owen");
     EXPECT_EQ(mapped("\"paddedsobol\""), "sobol-owen");
     EXPECT_EQ(mapped("\"pmj02bn\""), "pmj02");

@@ -98,6 +98,7 @@ TEST(SobolDigits, GlobalSobolDrawsEqualTheirDefinition) {
     for (uint64_t seed : {0, 12}) {
         expectGlobalSobolDrawsMatchDefinition<SobolSampler>(seed);
         expectGlobalSobolDrawsMatchDefinition<XorSobolSampler>(seed);
+        expectGlobalSobolDrawsMatchDefinition<GlobalOwenSobolSampler>(seed);
     }
 }
 

@@ -53,7 +53,7 @@ TEST(SamplerQuality, LowDiscrepancySamplersBeatIndependentAtN256) {
         std::printf("  %-12s %.5f\n", name.c_str(), mean[name]);
     }
     for (const char* name : {"halton", "halton-rd", "halton-owen", "stratified", "sobol",
-                             "sobol-xor", "sobol-owen", "zsobol", "pmj02"})
+                             "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02"})
         EXPECT_LT(mean[name], mean["independent"]) << name;
     // The (0,2) samplers are far better than random: at least 5x.
     for (const char* name : {"sobol-owen", "zsobol", "pmj02"})

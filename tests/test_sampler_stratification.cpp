@@ -31,7 +31,8 @@ using testing::drawPoints;
 }
 
 TEST(SamplerStratification, SobolOwenSobolAndPmj02AreZeroMTwoNets) {
-    for (const char* name : {"sobol", "sobol-xor", "sobol-owen", "zsobol", "pmj02"})
+    for (const char* name :
+         {"sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02"})
         for (int m = 1; m <= 10; ++m)
             for (uint64_t seed : {0, 1, 2}) {
                 const int n = 1 << m;
@@ -39,12 +40,37 @@ TEST(SamplerStratification, SobolOwenSobolAndPmj02AreZeroMTwoNets) {
                 // pair of an image pixel (dims 6,7 = bounceBase(0) + 4, + 5).
                 EXPECT_TRUE(isZeroMTwoNet(drawPoints(name, n, 0, 1, seed)))
                     << name << " dims 0,1 N=" << n << " seed " << seed;
-                if (std::string(name) == "sobol" || std::string(name) == "sobol-xor") continue;
+                if (std::string(name).starts_with("sobol") && name != std::string("sobol-owen"))
+                    continue;  // global sequences: a pixel's points are not a net there
                 EXPECT_TRUE(isZeroMTwoNet(drawPoints(name, n, 6, 7, seed, {5, 9}, {64, 64})))
                     << name << " dims 6,7 N=" << n << " seed " << seed;
                 EXPECT_TRUE(isZeroMTwoNet(drawPoints(name, n, 17, 18, seed, {5, 9}, {64, 64})))
                     << name << " dims 17,18 N=" << n << " seed " << seed;
             }
+}
+
+TEST(SamplerStratification, GlobalSobolDimensionsAreStratifiedAfterScrambling) {
+    // Every Sobol' dimension is a (0,1)-sequence: the first 2^k points put one
+    // in each interval [i/2^k, (i+1)/2^k). A digital shift and a nested (Owen)
+    // scramble permute those intervals, so the scrambled samplers keep it, in
+    // every dimension (here of a one-pixel image: every index is the pixel's).
+    for (const char* name : {"sobol", "sobol-xor", "sobol-global-owen"})
+        for (uint64_t seed : {0, 3}) {
+            for (int d = 2; d < 80; d += 7) {
+                const auto pair = drawPoints(name, 1024, d, d + 1, seed);
+                for (int k = 1; k <= 10; ++k) {
+                    std::vector<int> xs(size_t(1) << k, 0), ys(size_t(1) << k, 0);
+                    for (int i = 0; i < (1 << k); ++i) {
+                        ++xs[size_t(std::floor(double(pair[size_t(i)].x) * (1 << k)))];
+                        ++ys[size_t(std::floor(double(pair[size_t(i)].y) * (1 << k)))];
+                    }
+                    for (int c = 0; c < (1 << k); ++c)
+                        ASSERT_TRUE(xs[size_t(c)] == 1 && ys[size_t(c)] == 1)
+                            << name << " seed " << seed << " dims " << d << "," << d + 1
+                            << " k=" << k << " interval " << c;
+                }
+            }
+        }
 }
 
 TEST(SamplerStratification, ProgressivePrefixesStayNets) {

@@ -14,7 +14,7 @@ from collections import defaultdict
 # The canonical sampler order: the presentation's five, then pbrt-v4's.
 SAMPLER_ORDER = [
     "standard", "halton", "halton-rd", "halton-owen", "blue-noise", "independent",
-    "stratified", "sobol", "sobol-xor", "sobol-owen", "zsobol", "pmj02",
+    "stratified", "sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02",
 ]
 
 

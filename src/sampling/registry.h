@@ -23,7 +23,8 @@ namespace pathlab {
 using AnySampler =
     std::variant<StandardSampler, HaltonSampler, RandomDigitHaltonSampler, OwenHaltonSampler,
                  BlueNoiseSampler, IndependentSampler, StratifiedSampler, SobolSampler,
-                 XorSobolSampler, OwenSobolSampler, ZSobolSampler, Pmj02Sampler>;
+                 XorSobolSampler, GlobalOwenSobolSampler, OwenSobolSampler, ZSobolSampler,
+                 Pmj02Sampler>;
 
 struct SamplerInfo {
     std::string name;

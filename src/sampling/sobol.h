@@ -1,6 +1,7 @@
-// The Sobol' samplers: `sobol`, `sobol-xor`, `sobol-owen` and `zsobol`.
+// The Sobol' samplers: `sobol`, `sobol-xor`, `sobol-global-owen`, `sobol-owen`
+// and `zsobol`.
 //
-// `sobol` / `sobol-xor` — one global Sobol' sequence over the whole image
+// `sobol` / `sobol-xor` / `sobol-global-owen` — one global Sobol' sequence over the whole image
 // (pbrt-v4's SobolSampler). Dimensions 0 and 1 cover the image scaled to the
 // next power of two 2^m ≥ max(width, height); the first 2^{2m} points of a
 // (0,2)-sequence put exactly one point in every 2^-m × 2^-m square, so the
@@ -11,7 +12,11 @@
 // Sample indices follow the Gray code (Antonov & Saleev 1979), which is the
 // order in which the sequence is usually listed: (0,0), (.5,.5), (.75,.25),
 // (.25,.75), … — any 2^k consecutive aligned Gray indices are the same set.
-// `sobol-xor` applies a random digital shift seeded per dimension.
+// `sobol-xor` applies a random digital shift seeded per dimension;
+// `sobol-global-owen` a nested uniform (Owen) scramble seeded per dimension
+// (Owen 1995; the hash-based form of Burley 2020), as pbrt-v4's SobolSampler
+// does by default ("fastowen"). Both scramble dimensions 2 and up only, the
+// same way in every pixel; the pixel dimensions stay as the mapping put them.
 //
 // `sobol-owen` — Burley 2020 ("Practical Hash-based Owen Scrambling", JCGT
 // 9(4), §4 "padding"): every 2D draw is the first two Sobol' dimensions — a
@@ -54,7 +59,7 @@ struct SobolImageMapping {
     uint64_t index(const uint32_t* matrices, Vec2i p, uint64_t frame) const;
 };
 
-enum class SobolScrambling { None, Xor };
+enum class SobolScrambling { None, Xor, Owen };
 
 template <SobolScrambling kScrambling>
 class GlobalSobolSamplerT {
@@ -65,8 +70,9 @@ class GlobalSobolSamplerT {
           matrices_(sobolMatrices()),
           nibbleTables_(sobolNibbleTables()),
           mapping_(std::make_shared<const SobolImageMapping>(matrices_, c.resolution)) {
-        if constexpr (kScrambling == SobolScrambling::Xor)
-            for (int d = 0; d < kSobolNibbleDimensions; ++d) shifts_[size_t(d)] = shiftOf(d);
+        if constexpr (kScrambling != SobolScrambling::None)
+            for (int d = 0; d < kSobolNibbleDimensions; ++d)
+                scrambleSeeds_[size_t(d)] = scrambleSeedOf(d);
     }
 
     int samplesPerPixel() const { return spp_; }
@@ -104,16 +110,14 @@ class GlobalSobolSamplerT {
         return {fixedPointToFloat(m == 0 ? x : x << m), fixedPointToFloat(m == 0 ? y : y << m)};
     }
 
-    // Dimension d of the current index: its value and — for sobol-xor — its
-    // shift come from tables for the first kSobolNibbleDimensions dimensions
-    // (the same bits: tested against sampleDimensionByDefinition).
+    // Dimension d of the current index: its value and its scramble's seed
+    // come from tables for the first kSobolNibbleDimensions dimensions (the
+    // same bits: tested against sampleDimensionByDefinition).
     float sampleDimension(int d) const {
         if (d < kSobolNibbleDimensions) {
-            uint32_t v = sobolBitsByNibbles(nibbleTables_[d], matrices_ + d * kSobolMatrixColumns,
-                                            sobolIndex_);
-            if constexpr (kScrambling == SobolScrambling::Xor)
-                v = xorScramble(v, shifts_[size_t(d)]);
-            return fixedPointToFloat(v);
+            const uint32_t v = sobolBitsByNibbles(nibbleTables_[d],
+                                                  matrices_ + d * kSobolMatrixColumns, sobolIndex_);
+            return fixedPointToFloat(scramble(v, scrambleSeeds_[size_t(d)]));
         }
         return sampleDimensionByDefinition(d);
     }
@@ -121,19 +125,28 @@ class GlobalSobolSamplerT {
   public:
     float sampleDimensionByDefinition(int d) const {
         const int wrapped = d < kSobolDimensions ? d : 2 + (d - 2) % (kSobolDimensions - 2);
-        uint32_t v = sobolBits(matrices_, sobolIndex_, wrapped);
-        if constexpr (kScrambling == SobolScrambling::Xor) v = xorScramble(v, shiftOf(d));
-        return fixedPointToFloat(v);
+        const uint32_t v = sobolBits(matrices_, sobolIndex_, wrapped);
+        return fixedPointToFloat(scramble(v, scrambleSeedOf(d)));
     }
 
   private:
-    uint32_t shiftOf(int d) const { return foldSeed(hashValues(d, seed_, 0x584f52u)); }
+    static uint32_t scramble(uint32_t v, uint32_t seed) {
+        if constexpr (kScrambling == SobolScrambling::Xor) return xorScramble(v, seed);
+        if constexpr (kScrambling == SobolScrambling::Owen) return owenScramble(v, seed);
+        return v;
+    }
+    // Seeded per dimension (the tags keep sobol-xor's shifts as they were).
+    uint32_t scrambleSeedOf(int d) const {
+        if constexpr (kScrambling == SobolScrambling::Owen)
+            return foldSeed(hashValues(d, seed_, 0x4f57454eu));
+        return foldSeed(hashValues(d, seed_, 0x584f52u));
+    }
 
     int spp_;
     uint64_t seed_;
     const uint32_t* matrices_;
     const SobolNibbleTable* nibbleTables_;
-    std::array<uint32_t, kSobolNibbleDimensions> shifts_{};  // sobol-xor's, by dimension
+    std::array<uint32_t, kSobolNibbleDimensions> scrambleSeeds_{};  // by dimension
     std::shared_ptr<const SobolImageMapping> mapping_;
     static constexpr size_t kRecentIndices = kBatchSamples;
     Vec2i pixel_{-1, -1};
@@ -146,6 +159,7 @@ class GlobalSobolSamplerT {
 
 using SobolSampler = GlobalSobolSamplerT<SobolScrambling::None>;
 using XorSobolSampler = GlobalSobolSamplerT<SobolScrambling::Xor>;
+using GlobalOwenSobolSampler = GlobalSobolSamplerT<SobolScrambling::Owen>;
 
 // `sobol-owen`: padded, shuffled, Owen-scrambled Sobol' (Burley 2020).
 class OwenSobolSampler {

@@ -224,11 +224,7 @@ void sampler(ImportState& st, const std::string& type, const ParamSet& ps,
                           "neither)");
         ours = r == "none" ? "halton" : r == "owen" ? "halton-owen" : "halton-rd";
     } else if (type == "sobol") {
-        ours = r == "none"            ? "sobol"
-               : r == "permutedigits" ? "sobol-xor"
-                                      : nearest("pbrt-v4's global Owen-scrambled Sobol'",
-                                                "sobol-owen (padded Owen-scrambled pairs)");
-        if (ours != "sobol" && ours != "sobol-xor") ours = "sobol-owen";
+        ours = r == "none" ? "sobol" : r == "permutedigits" ? "sobol-xor" : "sobol-global-owen";
     } else if (type == "paddedsobol") {
         ours = r == "" || r == "owen" || r == "fastowen"
                    ? "sobol-owen"
