@@ -133,7 +133,7 @@ const BadInput kCases[] = {
     {"truncated image", "compare {dir}/a.exr {dir}/truncated.pfm --error-map {dir}/map.png",
      "map.png", "'{dir}/truncated.pfm' is truncated"},
     {"unknown metric", "compare {dir}/a.exr {dir}/a.exr --metric ssim", "",
-     "--metric: ssim not in {mse,rmse,relmse,psnr,flip,all}"},
+     "--metric: ssim not in {mse,rmse,relmse,psnr,bias,flip,all}"},
     {"absurd pixels per degree",
      "compare {dir}/a.exr {dir}/a.exr --ppd 1e30 --error-map {dir}/map.png", "map.png",
      "--ppd must be a number of pixels per degree between 1 and 1000, got '1e30'"},
