@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/json_null.h"
+#include "study/bias_analysis.h"
 #include "study/files.h"
 
 namespace pathlab {
@@ -22,6 +23,7 @@ Json cellJson(const CellRow& c) {
             {"flip", orNull(c.flip)},
             {"flip_median", orNull(c.flipMedian)},
             {"psnr", orNull(c.psnr)},
+            {"bias", orNull(c.bias)},
             {"mse_edge", orNull(c.mseEdge)},
             {"mse_rest", orNull(c.mseRest)},
             {"nonfinite", c.nonFinite},
@@ -31,7 +33,8 @@ Json cellJson(const CellRow& c) {
             {"max_depth", c.maxDepth},
             {"threads", c.threads},
             {"git_commit", c.gitCommit},
-            {"finished_at", c.finishedAt}};
+            {"finished_at", c.finishedAt},
+            {"source_hash", c.sourceHash.empty() ? Json(nullptr) : Json(c.sourceHash)}};
 }
 
 Json referenceJson(const ReferenceRow& r) {
@@ -111,6 +114,7 @@ void writeExports(const std::filesystem::path& dir, const ResultsStore& store,
                           {"references", referenceList},
                           {"analysis", analysis}};
     writeTextFileAtomic(dir / "results.csv", cellsCsv(cells));
+    writeTextFileAtomic(dir / "bias.csv", biasCsv(analyzeBias(cells)));
     writeTextFileAtomic(dir / "results.json", results.dump(1) + "\n");
     writeTextFileAtomic(dir / "analysis.json", analysis.dump(1) + "\n");
 }
