@@ -32,9 +32,10 @@ Json cellJson(const CellRow& c) {
             {"height", c.height},
             {"max_depth", c.maxDepth},
             {"threads", c.threads},
+            // An external cell's file hash; finished_at stays the last column.
+            {"source_hash", c.sourceHash.empty() ? Json(nullptr) : Json(c.sourceHash)},
             {"git_commit", c.gitCommit},
-            {"finished_at", c.finishedAt},
-            {"source_hash", c.sourceHash.empty() ? Json(nullptr) : Json(c.sourceHash)}};
+            {"finished_at", c.finishedAt}};
 }
 
 Json referenceJson(const ReferenceRow& r) {
