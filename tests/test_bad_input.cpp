@@ -133,7 +133,7 @@ const BadInput kCases[] = {
     {"truncated image", "compare {dir}/a.exr {dir}/truncated.pfm --error-map {dir}/map.png",
      "map.png", "'{dir}/truncated.pfm' is truncated"},
     {"unknown metric", "compare {dir}/a.exr {dir}/a.exr --metric ssim", "",
-     "--metric: ssim not in {mse,rmse,relmse,psnr,flip,all}"},
+     "--metric: ssim not in {mse,rmse,relmse,psnr,bias,flip,all}"},
     {"absurd pixels per degree",
      "compare {dir}/a.exr {dir}/a.exr --ppd 1e30 --error-map {dir}/map.png", "map.png",
      "--ppd must be a number of pixels per degree between 1 and 1000, got '1e30'"},
@@ -168,7 +168,7 @@ const BadInput kCases[] = {
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
      "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
-     "roulette_depth, metrics, time_budget_seconds, reference)"},
+     "roulette_depth, metrics, time_budget_seconds, reference, external)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
      "SPEC-SAMPLER"},
     {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",

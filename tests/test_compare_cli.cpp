@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -66,6 +67,8 @@ TEST_F(CompareCli, JsonForPngPairHasEveryMetricInLdrMode) {
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"mse", "rmse", "relmse", "psnr"})
         EXPECT_GT(j[key].get<double>(), 0) << key;
+    // b is a brighter than a where (x·y) mod 3 > 0.
+    EXPECT_GT(j["bias"]["mean"].get<double>(), 0);
     EXPECT_EQ(j["relmse_epsilon"].get<double>(), 0.01);
     const auto& f = j["flip"];
     EXPECT_EQ(f["mode"], "ldr");
@@ -109,10 +112,38 @@ TEST_F(CompareCli, SingleMetricAndIdenticalImages) {
     EXPECT_EQ(j["mse"].get<double>(), 0.0);
     EXPECT_EQ(j["relmse"].get<double>(), 0.0);
     EXPECT_TRUE(j["psnr"].is_null());  // infinite
+    EXPECT_EQ(j["bias"]["relative"].get<double>(), 0.0);
     EXPECT_EQ(j["flip"]["mean"].get<double>(), 0.0);
     const auto only = nlohmann::json::parse(run(a + " " + a + " --json --metric relmse").out);
     EXPECT_TRUE(only.contains("relmse") && only.contains("relmse_epsilon"));
     EXPECT_FALSE(only.contains("mse") || only.contains("flip") || only.contains("psnr"));
+}
+
+// A copy scaled by 1.05 is 5% too bright everywhere: its bias is 0.05 of
+// the reference's mean in total and per channel, and its sign says brighter.
+TEST_F(CompareCli, ScaledCopyHasRelativeBiasOfItsScale) {
+    const std::string a = writePattern("a.exr", 32, 24, 0.03f);
+    Image scaled = readImage(a);
+    double sum = 0;
+    std::array<double, 3> channel{};
+    for (size_t i = 0; i < scaled.rgb.size(); ++i) {
+        sum += scaled.rgb[i];
+        channel[i % 3] += scaled.rgb[i];
+        scaled.rgb[i] *= 1.05f;
+    }
+    writeImage(path("b.exr"), scaled);
+    const CliResult r = run(a + " " + path("b.exr") + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto bias = nlohmann::json::parse(r.out).at("bias");
+    const double pixels = 32.0 * 24.0;
+    EXPECT_NEAR(bias.at("relative").get<double>(), 0.05, 1e-6);
+    EXPECT_NEAR(bias.at("mean").get<double>(), 0.05 * sum / (3 * pixels), 1e-6);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(bias.at("channels")[c].get<double>(), 0.05 * channel[size_t(c)] / pixels, 1e-6);
+    // Swapped, the reference is the brighter one: the sign turns, and the
+    // relative value is against the brighter mean (−0.05 / 1.05).
+    const auto back = nlohmann::json::parse(run(path("b.exr") + " " + a + " --json").out);
+    EXPECT_NEAR(back.at("bias").at("relative").get<double>(), -0.05 / 1.05, 1e-6);
 }
 
 TEST_F(CompareCli, TextOutputIsAFewReadableLines) {

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/json_null.h"
+#include "metrics/bias.h"
 #include "metrics/error_map.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
@@ -52,6 +53,7 @@ float parsePpd(const std::string& text) {
 
 struct CompareResults {
     double mse = 0, rmse = 0, relmse = 0, psnr = 0;
+    Bias bias;
     bool hasPixelMetrics = false;
     std::optional<RegionMse> regions;  // with --regions
     std::unique_ptr<flip::Result> flip;
@@ -70,6 +72,7 @@ CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const I
         out.rmse = std::sqrt(out.mse);
         out.relmse = relativeMeanSquaredError(ref, test);
         out.psnr = psnrFromMse(out.mse);
+        out.bias = signedBias(ref, test);
         if (edgeMask) out.regions = meanSquaredErrorByRegion(ref, test, *edgeMask);
     }
     if (wants(args, "flip") || !args.errorMap.empty()) {
@@ -112,6 +115,10 @@ void printJson(const CompareArgs& args, const CompareResults& r) {
             j["relmse_epsilon"] = kRelMseEpsilon;
         }
         if (wants(args, "psnr")) j["psnr"] = finiteOrNull(r.psnr);
+        if (wants(args, "bias"))
+            j["bias"] = {{"mean", r.bias.mean},
+                         {"relative", orNull<nlohmann::json>(r.bias.relative)},
+                         {"channels", r.bias.channels}};
     }
     if (r.regions) {
         j["regions"] = {{"scene", args.regions},
@@ -130,6 +137,13 @@ void printText(const CompareArgs& args, const CompareResults& r) {
         if (wants(args, "relmse"))
             std::printf("relmse  %.6g  (epsilon %g)\n", r.relmse, kRelMseEpsilon);
         if (wants(args, "psnr")) std::printf("psnr    %.4f dB\n", r.psnr);
+        if (wants(args, "bias")) {
+            const Bias& b = r.bias;
+            std::printf("bias    %.6g  (r %.6g  g %.6g  b %.6g)", b.mean, b.channels[0],
+                        b.channels[1], b.channels[2]);
+            if (b.relative) std::printf("  relative %+.6g", *b.relative);
+            std::printf("\n");
+        }
     }
     if (r.regions) {
         const auto value = [](const std::optional<double>& v) {
@@ -183,12 +197,12 @@ void runCompare(const CompareArgs& args) {
 void addCompareCommand(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Image metrics (MSE, RMSE, relMSE, PSNR, FLIP) of TEST against REFERENCE");
+        "compare", "Image metrics (MSE, RMSE, relMSE, PSNR, bias, FLIP) of TEST against REFERENCE");
     cmd->add_option("reference", args->reference, "Reference image (.exr, .png or .pfm)")
         ->required();
     cmd->add_option("test", args->test, "Test image, same size as the reference")->required();
     cmd->add_option("--metric", args->metric, "Metric to compute (default: all)")
-        ->check(CLI::IsMember({"mse", "rmse", "relmse", "psnr", "flip", "all"}));
+        ->check(CLI::IsMember({"mse", "rmse", "relmse", "psnr", "bias", "flip", "all"}));
     cmd->add_flag("--json", args->json, "Print one JSON object on stdout");
     cmd->add_option("--error-map", args->errorMap,
                     "Write the FLIP error map: .png in the magma colour map, .exr/.pfm raw values");

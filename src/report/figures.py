@@ -57,15 +57,26 @@ def colour(sampler):
     return "#%02x%02x%02x" % (64 + digest[0] % 160, 64 + digest[1] % 160, 64 + digest[2] % 160)
 
 
+# An external renderer's samplers ("name:sampler") are dotted with hollow
+# markers, so they never pass for pathlab's; a biased point gets a red ring.
+EXTERNAL_LINESTYLE = ":"
+BIASED_COLOUR = "#e00000"
+
+
 def style(sampler):
+    external = ":" in sampler
     index = sorted(PALETTE).index(sampler) if sampler in PALETTE else len(sampler)
-    return {
+    linestyle = "-" if sampler in PRESENTATION or sampler not in PALETTE else "--"
+    out = {
         "color": colour(sampler),
         "marker": MARKERS[index % len(MARKERS)],
-        "linestyle": "-" if sampler in PRESENTATION or sampler not in PALETTE else "--",
+        "linestyle": EXTERNAL_LINESTYLE if external else linestyle,
         "markersize": 3.5,
         "linewidth": 1.4,
     }
+    if external:
+        out.update(markerfacecolor="white", markersize=4.5)
+    return out
 
 
 def save(fig, directory, name):
@@ -110,11 +121,35 @@ def _slope_guide(ax, study, scene, metric):
             label="slope −1 (Monte Carlo)")
 
 
+def _mark_biased(ax, study, scene, metric):
+    """A red ring, and one legend entry, on every point the analysis calls biased."""
+    labelled = False
+    for sampler in study.samplers(scene):
+        biased = set(study.biased_spps(scene, sampler))
+        s = study.series(scene, sampler, metric)
+        points = [(n, m) for n, m in zip(s.spp, s.mean) if n in biased]
+        if not points:
+            continue
+        ax.plot([p[0] for p in points], [p[1] for p in points], linestyle="none", marker="o",
+                markersize=9, markerfacecolor="none", markeredgecolor=BIASED_COLOUR,
+                markeredgewidth=1.5, label=None if labelled else "biased (bias.csv)")
+        labelled = True
+
+
+def _renderer_legend(ax, study, scene):
+    """One legend entry per external renderer: its samplers are the dotted lines."""
+    for renderer in study.renderers(scene):
+        ax.plot([], [], color="#555", linestyle=EXTERNAL_LINESTYLE, marker="o",
+                markerfacecolor="white", label=f"{renderer}: external renderer (dotted)")
+
+
 def plot_vs_spp(ax, study, scene, metric):
     for sampler in study.samplers(scene):
         s = study.series(scene, sampler, metric)
         if s.spp:
             _draw_series(ax, s.spp, s, sampler)
+    _mark_biased(ax, study, scene, metric)
+    _renderer_legend(ax, study, scene)
     if metric in ("mse", "relmse"):
         _slope_guide(ax, study, scene, metric)
     floor = study.noise_floor(scene, metric) if metric in ("mse", "relmse") else None
@@ -145,7 +180,8 @@ def _label_short_log_axis(ax):
 def plot_vs_time(ax, study, scene):
     for sampler in study.samplers(scene):
         s = study.series(scene, sampler, "mse")
-        if s.spp:
+        # An external renderer's cells without render times have none to plot.
+        if s.spp and any(t > 0 for t in s.seconds):
             _draw_series(ax, s.seconds, s, sampler)
     target = study.analysis[scene]["target_mse"]
     if target:

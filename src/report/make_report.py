@@ -198,7 +198,7 @@ def results_table(study, scene):
                 analysis, samplers, ratio_spp[i], [s for s in samplers if values[s][i] == best]):
             best = None
         winners.append(best)
-    head = "".join(f"<th>{esc(name)}</th>" for name, _ in cols)
+    head = "".join(f"<th>{esc(name)}</th>" for name, _ in cols) + "<th>bias</th>"
     rows = []
     for s in samplers:
         cells = []
@@ -210,6 +210,7 @@ def results_table(study, scene):
                 "below_noise_floor")
             mark = '<sup title="within 2× the reference noise floor">*</sup>' if floor else ""
             cells.append(f"<td{cls}>{esc(fmt(v))}{mark}</td>")
+        cells.append(bias_cell(study, scene, s))
         rows.append(f'<tr><th><span class="swatch" style="background:{figures.colour(s)}"></span>'
                     f'{esc(s)}</th>{"".join(cells)}</tr>')
     target = analysis["target_mse"]
@@ -226,8 +227,35 @@ def results_table(study, scene):
         note += " * marks an MSE within twice the reference's noise floor: not meaningful."
     if "independent" not in samplers:
         note += " The study has no <b>independent</b> sampler, so ratios to it are omitted."
+    note += bias_note(study)
     return (f'<table class="results"><thead><tr><th>sampler</th>{head}</tr></thead>'
             f'<tbody>{"".join(rows)}</tbody></table><p class="note">{note}</p>')
+
+
+def bias_cell(study, scene, sampler):
+    """The bias verdict in words: where the sampler is biased, and by how much."""
+    rows = [b for (sc, sa, _), b in sorted(study.bias.items()) if sc == scene and sa == sampler]
+    biased = [b for b in rows if b.get("biased") == "1"]
+    if biased:
+        worst = max(biased, key=lambda b: abs(b["bias"]))
+        spps = ", ".join(str(b["spp"]) for b in biased)
+        return (f'<td class="biased">biased at {esc(spps)} spp '
+                f'({100 * worst["bias"]:+.2g}% at {worst["spp"]})</td>')
+    if rows and all(b.get("biased") == "deterministic" for b in rows):
+        return '<td title="the seed does not change its images">deterministic error</td>'
+    if rows and all(b.get("biased") == "0" for b in rows):
+        return "<td>none found</td>"
+    return "<td>—</td>"
+
+
+def bias_note(study):
+    tolerance = study.bias_tolerance
+    if tolerance is None:
+        return ""
+    return (" Bias: the mean over the seeds of (image mean − reference mean) ÷ reference mean; "
+            "<b>biased</b> where its Student-t 95% interval lies wholly beyond "
+            f"±{100 * tolerance:.2g}% (bias.csv). A sampler the seed does not randomise has a "
+            "deterministic error instead, which no number of seeds can tell from bias.")
 
 
 def region_spps(study, scene, ratios):
@@ -300,6 +328,12 @@ def findings(study, scene):
         best = min(times, key=times.get)
         items.append(f"First to the target error: <b>{esc(best)}</b> "
                      f"({fmt(times[best])} s).")
+    biased = {s: study.biased_spps(scene, s) for s in a}
+    biased = {s: v for s, v in biased.items() if v}
+    if biased:
+        words = "; ".join(f"<b>{esc(s)}</b> at {', '.join(str(n) for n in v)} spp"
+                          for s, v in biased.items())
+        items.append(f'<span class="biased">Biased</span>: {words} (see the bias column).')
     regions = study.runner_analysis.get("scenes", {}).get(scene, {}).get("regions") or {}
     share = (regions.get("independent_edge_share") or {}).get(str(top))
     if regions.get("edge_pixels") and share is not None:
@@ -414,7 +448,8 @@ def header(study):
         ("Russian roulette", f"after {info.get('roulette_depth', '2')} bounces"
                              if info.get("russian_roulette", "true") == "true" else "off"),
         ("threads", ", ".join(str(n) for n in sorted({int(c["threads"]) for c in study.cells
-                                                       if c.get("threads") not in (None, "")}))
+                                                       if c.get("threads") not in (None, "")
+                                                       and not c.get("source_hash")}))
          or "?"),
         ("commit", info.get("git_commit", "?")),
         ("created", info.get("created_at", "?")),
@@ -470,8 +505,9 @@ def build(study, report_dir, assets, pathlab):
     if not scenes_data:
         raise StudyError(f"'{study.dir}' has no scene with a reference image yet")
     body = header(study) + "".join(sections)
+    own = [s for s in study.samplers() if ":" not in s]  # external ones have no points
     body += (f'<section id="gallery"><h2>Sampler gallery</h2>'
-             f'{gallery(study.samplers(), pathlab, figures_dir)}</section>')
+             f'{gallery(own, pathlab, figures_dir)}</section>')
     body += (f'<footer>Written by <code>pathlab report</code> on '
              f'{time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())} from '
              f'<code>{esc(study.dir)}</code>.</footer>')

@@ -25,7 +25,13 @@ class StudyError(Exception):
 def sampler_sort_key(name):
     if name in SAMPLER_ORDER:
         return (0, SAMPLER_ORDER.index(name), name)
+    # An external renderer's samplers ("name:sampler") after pathlab's, by renderer.
     return (1, 0, name)
+
+
+def renderer_of(sampler):
+    """The external renderer a sampler belongs to ("cycles" of "cycles:sobol"), or None."""
+    return sampler.split(":", 1)[0] if ":" in sampler else None
 
 
 def _rows(db, sql):
@@ -73,6 +79,10 @@ class Study:
         for c in self.cells:
             self._by_key[(c["scene"], c["sampler"], int(c["spp"]))].append(c)
         self.analysis = {s: self._scene_analysis(s) for s in self.scenes()}
+        # bias.csv's rows by (scene, sampler, spp); empty for older studies.
+        self.bias = {(b["scene"], b["sampler"], int(b["spp"])): b
+                     for b in self.runner_analysis.get("bias") or []}
+        self.bias_tolerance = self.runner_analysis.get("bias_tolerance")
 
     # --- what the study holds -------------------------------------------------
     def scenes(self):
@@ -99,6 +109,15 @@ class Study:
             if int(c["seed"]) == seed:
                 return c
         return None
+
+    def biased_spps(self, scene, sampler):
+        """The spp at which the analysis calls `sampler` biased on `scene`."""
+        return [spp for (sc, sa, spp), b in sorted(self.bias.items())
+                if sc == scene and sa == sampler and b.get("biased") == "1"]
+
+    def renderers(self, scene=None):
+        """The external renderers whose cells the study holds."""
+        return sorted({renderer_of(s) for s in self.samplers(scene) if renderer_of(s)})
 
     def path(self, relative):
         return os.path.join(self.dir, relative)
@@ -194,7 +213,7 @@ def _ratios(series, independent):
 
 def _time_to_target(series, target):
     """Seconds at which the MSE curve first reaches `target`, in log-log."""
-    if not target or not series.spp:
+    if not target or not series.spp or not any(t > 0 for t in series.seconds):
         return None
     points = list(zip(series.seconds, series.mean))
     if points[0][1] <= target:

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/json_null.h"
+#include "study/bias_analysis.h"
 
 namespace pathlab {
 namespace {
@@ -189,6 +190,13 @@ Json equalTimeJson(const std::vector<SppSummary>& curve, std::optional<double> b
     return {{"seconds", *budget}, {"mse", *mse}, {"mse_corrected", corrected(*mse, floor)}};
 }
 
+// Whether the curve has render times: an external renderer's cells without a
+// times file have none (0), and no time-based number is made of them.
+bool timed(const std::vector<SppSummary>& curve) {
+    return std::any_of(curve.begin(), curve.end(),
+                       [](const SppSummary& s) { return s.seconds > 0; });
+}
+
 // The image's pixel count, from any of its cells (all share the resolution).
 int64_t scenePixels(const SceneCells& scene) {
     for (const SamplerCells& s : scene.samplers)
@@ -221,8 +229,10 @@ Json sceneJson(const SceneCells& scene, std::optional<double> budget) {
             {"mse_ratio_by_region",
              {{"edge", ratioJson(curve, base, edge, scene.noiseMseEdge)},
               {"rest", ratioJson(curve, base, rest, scene.noiseMseRest)}}},
-            {"time_to_target_seconds", orNull(timeToReach(errorCurve(curve), targetMse))},
-            {"error_at_time_budget", equalTimeJson(curve, budget, scene.noiseMse)},
+            {"time_to_target_seconds",
+             timed(curve) ? orNull(timeToReach(errorCurve(curve), targetMse)) : Json(nullptr)},
+            {"error_at_time_budget",
+             timed(curve) ? equalTimeJson(curve, budget, scene.noiseMse) : Json(nullptr)},
             {"by_spp", bySppJson(curve, scene)}};
     }
     return {{"noise_floor_mse", scene.noiseMse},
@@ -238,6 +248,19 @@ double logLogInterpolate(double x0, double y0, double x1, double y1, double x) {
     const double lx0 = std::log(x0), lx1 = std::log(x1);
     const double a = lx1 == lx0 ? 0.0 : (std::log(x) - lx0) / (lx1 - lx0);
     return std::exp(std::log(y0) + a * (std::log(y1) - std::log(y0)));
+}
+
+Json biasJson(const std::vector<CellRow>& cells) {
+    Json out = Json::array();
+    for (const BiasRow& r : analyzeBias(cells))
+        out.push_back({{"scene", r.scene},
+                       {"sampler", r.sampler},
+                       {"spp", r.spp},
+                       {"seeds", r.seeds},
+                       {"bias", orNull(r.bias)},
+                       {"ci95", orNull(r.ci95)},
+                       {"biased", r.biased}});
+    return out;
 }
 
 }  // namespace
@@ -297,7 +320,9 @@ nlohmann::ordered_json analyzeStudy(const std::vector<CellRow>& cells,
             {"mse_correction",
              "slopes, ratios and *_corrected values use mse - noise_floor_mse "
              "(clamped at 0); mse, target_mse and times use raw mse"},
-            {"scenes", scenes}};
+            {"scenes", scenes},
+            {"bias_tolerance", kBiasTolerance},
+            {"bias", biasJson(cells)}};
 }
 
 }  // namespace pathlab

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/bias.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 
@@ -42,6 +43,7 @@ CellMetrics measureCell(const Image& reference, const Image& test, float exposur
     CellMetrics m;
     m.mse = meanSquaredError(reference, test);
     m.rmse = std::sqrt(m.mse);
+    m.bias = signedBias(reference, test).relative;
     if (edgeMask) {
         const RegionMse regions = meanSquaredErrorByRegion(reference, test, *edgeMask);
         m.mseEdge = regions.inside;

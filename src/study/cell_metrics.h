@@ -19,10 +19,13 @@ struct CellMetrics {
     // MSE over the emitter-edge pixels and over the rest (render/emitter_edges.h);
     // absent without a mask, or for a region with no pixels.
     std::optional<double> mseEdge, mseRest;
+    // Relative bias (metrics/bias.h): mean of test − reference over the
+    // reference's mean; absent for a reference whose mean is not positive.
+    std::optional<double> bias;
     std::vector<float> flipMap;  // HDR-FLIP per pixel; empty unless FLIP was measured
 };
 
-// MSE and RMSE always, the rest as `spec.metrics` asks. FLIP is HDR-FLIP (the
+// MSE, RMSE and the relative bias always, the rest as `spec.metrics` asks. FLIP is HDR-FLIP (the
 // renders are linear and unbounded); PSNR is that of the tone-mapped 8-bit
 // views (both images scaled by 2^exposure, clamped, sRGB encoded, peak 1).
 // `flip` is the reference prepared once for HDR-FLIP (CellMeter below); the

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/json_null.h"
+#include "study/bias_analysis.h"
 #include "study/files.h"
 
 namespace pathlab {
@@ -22,6 +23,7 @@ Json cellJson(const CellRow& c) {
             {"flip", orNull(c.flip)},
             {"flip_median", orNull(c.flipMedian)},
             {"psnr", orNull(c.psnr)},
+            {"bias", orNull(c.bias)},
             {"mse_edge", orNull(c.mseEdge)},
             {"mse_rest", orNull(c.mseRest)},
             {"nonfinite", c.nonFinite},
@@ -30,6 +32,8 @@ Json cellJson(const CellRow& c) {
             {"height", c.height},
             {"max_depth", c.maxDepth},
             {"threads", c.threads},
+            // An external cell's file hash; finished_at stays the last column.
+            {"source_hash", c.sourceHash.empty() ? Json(nullptr) : Json(c.sourceHash)},
             {"git_commit", c.gitCommit},
             {"finished_at", c.finishedAt}};
 }
@@ -111,6 +115,7 @@ void writeExports(const std::filesystem::path& dir, const ResultsStore& store,
                           {"references", referenceList},
                           {"analysis", analysis}};
     writeTextFileAtomic(dir / "results.csv", cellsCsv(cells));
+    writeTextFileAtomic(dir / "bias.csv", biasCsv(analyzeBias(cells)));
     writeTextFileAtomic(dir / "results.json", results.dump(1) + "\n");
     writeTextFileAtomic(dir / "analysis.json", analysis.dump(1) + "\n");
 }

@@ -17,7 +17,7 @@ CREATE TABLE IF NOT EXISTS cells (
   scene TEXT NOT NULL, sampler TEXT NOT NULL, spp INTEGER NOT NULL, seed INTEGER NOT NULL,
   seconds REAL, mse REAL, rmse REAL, relmse REAL, flip REAL, flip_median REAL, psnr REAL,
   nonfinite INTEGER, image TEXT, width INTEGER, height INTEGER, max_depth INTEGER,
-  threads INTEGER, git_commit TEXT, finished_at TEXT, mse_edge REAL, mse_rest REAL,
+  threads INTEGER, git_commit TEXT, finished_at TEXT, mse_edge REAL, mse_rest REAL, bias REAL, source_hash TEXT,
   PRIMARY KEY (scene, sampler, spp, seed));
 CREATE TABLE IF NOT EXISTS "references" (
   scene TEXT PRIMARY KEY, sampler TEXT, spp INTEGER, seconds REAL, cache_key TEXT,
@@ -29,7 +29,7 @@ CREATE TABLE IF NOT EXISTS study (key TEXT PRIMARY KEY, value TEXT);
 constexpr const char* kCellColumns =
     "scene, sampler, spp, seed, seconds, mse, rmse, relmse, flip, flip_median, psnr, "
     "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at, mse_edge, "
-    "mse_rest";
+    "mse_rest, bias, source_hash";
 
 // Columns added since the first schema, with their tables: a study begun by an
 // older pathlab gains them (NULL in its old rows) when it is resumed.
@@ -40,6 +40,8 @@ struct AddedColumn {
 };
 constexpr AddedColumn kAddedColumns[] = {{"cells", "mse_edge", "REAL"},
                                          {"cells", "mse_rest", "REAL"},
+                                         {"cells", "bias", "REAL"},
+                                         {"cells", "source_hash", "TEXT"},
                                          {"references", "noise_mse_edge", "REAL"},
                                          {"references", "noise_mse_rest", "REAL"},
                                          {"references", "edge_pixels", "INTEGER"}};
@@ -133,6 +135,8 @@ CellRow readCell(const Statement& s) {
     r.finishedAt = s.text(18);
     r.mseEdge = s.optionalReal(19);
     r.mseRest = s.optionalReal(20);
+    r.bias = s.optionalReal(21);
+    r.sourceHash = s.text(22);
     return r;
 }
 
@@ -192,7 +196,7 @@ void ResultsStore::exec(const char* sql) const {
 void ResultsStore::putCell(const CellRow& r) {
     Statement s(db_,
                 std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
-                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 path_);
     s.bind(1, r.key.scene);
     s.bind(2, r.key.sampler);
@@ -215,6 +219,11 @@ void ResultsStore::putCell(const CellRow& r) {
     s.bind(19, r.finishedAt);
     s.bind(20, r.mseEdge);
     s.bind(21, r.mseRest);
+    s.bind(22, r.bias);
+    if (r.sourceHash.empty())
+        s.bindNull(23);
+    else
+        s.bind(23, r.sourceHash);
     // A single statement is its own transaction: the row is there whole or not at all.
     s.step();
 }

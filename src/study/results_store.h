@@ -32,6 +32,12 @@ struct CellRow {
     // MSE over the emitter-edge pixels and the rest (render/emitter_edges.h);
     // absent for a region without pixels and in rows of older studies.
     std::optional<double> mseEdge, mseRest;
+    // Relative bias (metrics/bias.h); absent in rows of older studies.
+    std::optional<double> bias;
+    // An external renderer's cell: the content hash of the file it was
+    // measured from (`image` is that file), which --resume compares. Empty
+    // for the study's own cells.
+    std::string sourceHash;
 };
 
 struct ReferenceRow {

@@ -22,6 +22,8 @@
 #include "study/analysis.h"
 #include "study/cell_metrics.h"
 #include "study/exports.h"
+#include "study/external.h"
+#include "study/external_cells.h"
 #include "study/files.h"
 #include "study/progress.h"
 #include "study/reference_cache.h"
@@ -47,6 +49,13 @@ struct SceneJob {
     int64_t edgePixels = 0;
 };
 
+// An [[external]] table's images, found before the directory is touched,
+// and the reference it names (empty when it uses the study's).
+struct ExternalJob {
+    ExternalRenders renders;
+    Image reference;
+};
+
 // Everything a cell needs besides its key.
 struct StudyContext {
     const StudySpec& spec;
@@ -55,6 +64,7 @@ struct StudyContext {
     StudyProgress& progress;
     StudyRun& run;
     int threads = 0;  // as used, for the record
+    const std::vector<ExternalJob>& externals;
 };
 
 std::string cellStem(const CellKey& k) {
@@ -431,7 +441,9 @@ void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
                 sourceGitCommit(),
                 isoTimestampUtc(),
                 m.mseEdge,
-                m.mseRest};
+                m.mseRest,
+                m.bias,
+                {}};
     ctx.store.putCell(row);
     ++ctx.run.cellsRendered;
     ctx.progress.rendered(cellLabel(cell.key), cellWork(ctx.spec, cell.key));
@@ -479,6 +491,71 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
     for (const MeasuredCell& cell : measured) commitCell(cell, ctx);
 }
 
+void measureExternal(const ExternalJob& external, const ExternalTarget& target, StudyContext& ctx) {
+    const ExternalRun r =
+        measureExternalCells(external.renders, target, ctx.options.dir, ctx.store, ctx.progress);
+    ctx.run.cellsRendered += r.measured;
+    ctx.run.cellsSkipped += r.skipped;
+}
+
+// The external renders of a study scene that use its reference.
+void measureExternalsOfScene(const SceneJob& job, const Reference& ref, const CellMeter& meter,
+                             StudyContext& ctx) {
+    for (const ExternalJob& e : ctx.externals)
+        if (e.renders.spec->scene == job.scene.name && e.renders.spec->reference.empty())
+            measureExternal(e,
+                            {job.scene.name, ref.image, ref.exposure, meter,
+                             pixels(ctx.spec) * kCellOverheadSpp},
+                            ctx);
+}
+
+// An external render with its own reference: measured against that, with the
+// emitter-edge split when the scene is the study's and the sizes agree. A
+// scene the study does not render gets the reference's row and pictures.
+void measureExternalWithReference(const ExternalJob& e, const std::vector<SceneJob>& jobs,
+                                  StudyContext& ctx) {
+    const std::string& scene = e.renders.spec->scene;
+    const float exposure = viewingExposure(e.reference);
+    const std::vector<uint8_t>* mask = nullptr;
+    const auto job = std::find_if(jobs.begin(), jobs.end(),
+                                  [&](const SceneJob& j) { return j.scene.name == scene; });
+    if (job != jobs.end() && job->edgeMask.size() == e.reference.pixelCount())
+        mask = &job->edgeMask;
+    if (job == jobs.end()) {
+        const std::string stem = "references/" + scene;
+        writeImage((ctx.options.dir / (stem + ".exr")).string(), e.reference);
+        writeImage((ctx.options.dir / (stem + ".png")).string(), e.reference, exposure);
+        ctx.store.putReference({scene, e.renders.spec->name, 0, 0, "", 0, 0, exposure,
+                                stem + ".exr", std::nullopt, std::nullopt, std::nullopt});
+    }
+    const CellMeter meter(e.reference, exposure, ctx.spec, mask);
+    measureExternal(
+        e,
+        {scene, e.reference, exposure, meter, double(e.reference.pixelCount()) * kCellOverheadSpp},
+        ctx);
+}
+
+// Every [[external]] table's images, and the references they name, read
+// before anything is written: a bad table stops the study untouched.
+std::vector<ExternalJob> findExternals(const StudySpec& spec) {
+    std::vector<ExternalJob> out;
+    for (const ExternalSpec& e : spec.externals) {
+        ExternalJob job{findExternalImages(e), {}};
+        if (!e.reference.empty()) job.reference = readImage(e.reference);
+        checkExternalImageSizes(
+            job.renders, e.reference.empty() ? spec.resolution
+                                             : Vec2i{job.reference.width, job.reference.height});
+        out.push_back(std::move(job));
+    }
+    return out;
+}
+
+int externalCellCount(const std::vector<ExternalJob>& externals) {
+    int n = 0;
+    for (const ExternalJob& e : externals) n += int(e.renders.images.size());
+    return n;
+}
+
 void runScene(const SceneJob& job, StudyContext& ctx) {
     const std::vector<CellKey> cells = sceneCells(ctx.spec, job.scene.name);
     std::vector<CellKey> todo;
@@ -494,6 +571,7 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
     recordReference(job, ref, ctx);
     const CellMeter meter(ref.image, ref.exposure, ctx.spec, &job.edgeMask);
     for (const CellRender& cells : planRenders(todo)) renderCells(job, ref, meter, cells, ctx);
+    measureExternalsOfScene(job, ref, meter, ctx);
 }
 
 // All the study's work, in samples: every cell, and the references not yet
@@ -534,18 +612,24 @@ StudyRun runStudy(const StudySpec& spec, const StudyOptions& options) {
     // Everything that can be refused is refused before the directory is touched.
     checkStudyOptions(options);
     const std::vector<SceneJob> jobs = loadScenes(spec);
+    const std::vector<ExternalJob> externals = findExternals(spec);
     checkDirectory(spec, jobs, options);
     const std::unique_ptr<ResultsStore> owned = beginStudyFiles(spec, jobs, options);
     ResultsStore& store = *owned;
     const int totalCells =
-        int(spec.scenes.size() * spec.samplers.size() * spec.spp.size()) * spec.seeds;
-    StudyProgress progress(totalCells, totalWork(spec, jobs));
+        int(spec.scenes.size() * spec.samplers.size() * spec.spp.size()) * spec.seeds +
+        externalCellCount(externals);
+    // External cells cost their metrics, counted at the study's size.
+    StudyProgress progress(totalCells, totalWork(spec, jobs) + externalCellCount(externals) *
+                                                                   pixels(spec) * kCellOverheadSpp);
     StudyRun run;
     StudyContext ctx{
-        spec,  options,
-        store, progress,
-        run,   options.threads > 0 ? options.threads : tbb::info::default_concurrency()};
+        spec,     options, store,
+        progress, run,     options.threads > 0 ? options.threads : tbb::info::default_concurrency(),
+        externals};
     for (const SceneJob& job : jobs) runScene(job, ctx);
+    for (const ExternalJob& e : externals)
+        if (!e.renders.spec->reference.empty()) measureExternalWithReference(e, jobs, ctx);
     progress.finish();
     finishStudy(spec, options, store, run);
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

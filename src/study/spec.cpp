@@ -117,8 +117,13 @@ class SpecReader {
     std::vector<int> sppList(const toml::node& n) const;
     Vec2i resolution(const toml::node& n) const;
     ReferenceSpec reference(const toml::node& n) const;
+    std::vector<ExternalSpec> externals(const toml::node& n,
+                                        const std::vector<StudyScene>& scenes) const;
 
   private:
+    ExternalSpec external(const toml::node& n, const std::string& key,
+                          const std::vector<StudyScene>& scenes) const;
+    std::string path(const toml::node& n, const std::string& key) const;
     StudyScene scene(const toml::node& n, const std::string& key) const;
 
     std::string source_;
@@ -197,11 +202,72 @@ ReferenceSpec SpecReader::reference(const toml::node& n) const {
     return r;
 }
 
+std::string SpecReader::path(const toml::node& n, const std::string& key) const {
+    fs::path p(string(n, key));
+    if (p.empty()) fail(n.source(), key, "must not be empty");
+    if (p.is_relative()) p = baseDir_ / p;
+    return fs::absolute(p).lexically_normal().string();
+}
+
+// Only its keys and types here; study/external.h matches its files.
+ExternalSpec SpecReader::external(const toml::node& n, const std::string& key,
+                                  const std::vector<StudyScene>& scenes) const {
+    if (!n.is_table()) failType(n, key, "a table");
+    const toml::table& t = *n.as_table();
+    onlyKeys(t, key + ".", {"name", "scene", "images", "times", "reference"});
+    ExternalSpec e;
+    const auto need = [&](const char* k) -> const toml::node& {
+        const toml::node* v = t.get(k);
+        if (!v) fail(n.source(), key + "." + k, "is missing (it is required)");
+        return *v;
+    };
+    const toml::node& name = need("name");
+    e.name = string(name, key + ".name");
+    if (e.name.empty() || e.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRS"
+                                                   "TUVWXYZ0123456789_-.") != std::string::npos)
+        fail(name.source(), key + ".name",
+             "must be letters, digits, '-', '_' or '.', got '" + e.name + "'");
+    const std::vector<std::string> own = samplerNames();
+    if (std::find(own.begin(), own.end(), e.name) != own.end())
+        fail(name.source(), key + ".name",
+             "'" + e.name + "' is the name of a pathlab sampler: choose another");
+    const toml::node& scene = need("scene");
+    e.scene = string(scene, key + ".scene");
+    e.images = path(need("images"), key + ".images");
+    if (const toml::node* v = t.get("times")) e.times = path(*v, key + ".times");
+    if (const toml::node* v = t.get("reference")) e.reference = path(*v, key + ".reference");
+    const bool studyScene = std::any_of(scenes.begin(), scenes.end(),
+                                        [&](const StudyScene& s) { return s.name == e.scene; });
+    if (!studyScene && e.reference.empty())
+        fail(scene.source(), key + ".scene",
+             "names '" + e.scene +
+                 "', which is not a scene of the study: give the study's scene or a 'reference'");
+    e.origin = source_ + ":" + std::to_string(n.source().begin.line) + ": key '" + key + "'";
+    return e;
+}
+
+std::vector<ExternalSpec> SpecReader::externals(const toml::node& n,
+                                                const std::vector<StudyScene>& scenes) const {
+    if (!n.is_array_of_tables()) failType(n, "external", "an array of tables ([[external]])");
+    std::vector<ExternalSpec> out;
+    const toml::array& a = *n.as_array();
+    for (size_t i = 0; i < a.size(); ++i) {
+        const std::string key = "external[" + std::to_string(i) + "]";
+        ExternalSpec e = external(a[i], key, scenes);
+        for (const ExternalSpec& other : out)
+            if (other.name == e.name && other.scene == e.scene)
+                fail(a[i].source(), key,
+                     "repeats renderer '" + e.name + "' on scene '" + e.scene + "'");
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
 StudySpec readSpec(const toml::table& t, const SpecReader& in) {
-    in.onlyKeys(
-        t, "",
-        {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
-         "russian_roulette", "roulette_depth", "metrics", "time_budget_seconds", "reference"});
+    in.onlyKeys(t, "",
+                {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
+                 "russian_roulette", "roulette_depth", "metrics", "time_budget_seconds",
+                 "reference", "external"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
         s.name = in.string(*v, "name");
@@ -229,6 +295,7 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
             in.fail(seed->source(), "reference.seed",
                     "must differ from the cells' seeds 0…" + std::to_string(s.seeds - 1));
     }
+    if (const toml::node* v = t.get("external")) s.externals = in.externals(*v, s.scenes);
     return s;
 }
 
@@ -311,6 +378,14 @@ std::string studySpecToToml(const StudySpec& s) {
         << "spp = " << s.reference.spp << "\n"
         << "sampler = " << quoted(s.reference.sampler) << "\n"
         << "seed = " << s.reference.seed << "\n";
+    for (const ExternalSpec& e : s.externals) {
+        out << "\n[[external]]\n"
+            << "name = " << quoted(e.name) << "\n"
+            << "scene = " << quoted(e.scene) << "\n"
+            << "images = " << quoted(e.images) << "\n";
+        if (!e.times.empty()) out << "times = " << quoted(e.times) << "\n";
+        if (!e.reference.empty()) out << "reference = " << quoted(e.reference) << "\n";
+    }
     return out.str();
 }
 
@@ -334,6 +409,8 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.reference.spp != b.reference.spp) return "reference.spp";
     if (a.reference.sampler != b.reference.sampler) return "reference.sampler";
     if (a.reference.seed != b.reference.seed) return "reference.seed";
+    // [[external]] tables may differ: a resumed study measures the renders
+    // they name now beside its own cells, which they do not change.
     return "";
 }
 

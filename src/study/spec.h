@@ -35,6 +35,18 @@ struct StudyScene {
     std::string origin = {};
 };
 
+// Another renderer's images of a scene, judged beside the study's own cells
+// ([[external]] in docs/study-spec.toml; study/external.h finds them). Paths
+// are absolute; `origin` names the spec line of the table for messages.
+struct ExternalSpec {
+    std::string name;       // its samplers appear as "name:sampler"
+    std::string scene;      // a study scene's name, or any name with `reference`
+    std::string images;     // pattern with {sampler}, {spp} and {seed}
+    std::string times;      // optional CSV sampler,spp,seed,seconds; "" when none
+    std::string reference;  // optional image; "" for the study's reference
+    std::string origin = {};
+};
+
 struct StudySpec {
     std::string name = "study";
     std::vector<StudyScene> scenes;
@@ -48,6 +60,7 @@ struct StudySpec {
     ReferenceSpec reference;
     std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
     std::optional<double> timeBudgetSeconds;
+    std::vector<ExternalSpec> externals;
 
     bool wants(const std::string& metric) const;
 };

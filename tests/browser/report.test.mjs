@@ -87,6 +87,26 @@ try {
     assert.ok((await page.locator("table.results td.winner").count()) >= 1, "a winner is highlighted");
   });
 
+  await check("an external renderer is shown beside pathlab's samplers, flagged biased", async () => {
+    const names = await page.$$eval("table.results tbody th", (ths) => ths.map((t) => t.textContent));
+    assert.ok(names.includes("direct:independent") && names.includes("direct:sobol-owen"),
+      `summary rows: ${names}`);
+    assert.ok(names.includes("independent"), `summary rows: ${names}`);
+    // Direct light only is far too dark; with two seeds the interval is wide
+    // at the lowest spp, so the verdict names the spp where it is decided.
+    const biased = await page.$$eval("table.results td.biased", (tds) =>
+      tds.map((t) => ({ row: t.parentElement.querySelector("th").textContent, text: t.textContent })));
+    assert.ok(biased.length >= 1, "no biased cell");
+    assert.ok(biased.every((b) => b.row.startsWith("direct:") && /^biased at .* spp/.test(b.text)),
+      `biased cells: ${JSON.stringify(biased)}`);
+    const colour = await page.locator("table.results td.biased").first()
+      .evaluate((td) => getComputedStyle(td).color);
+    assert.equal(colour, "rgb(192, 0, 0)");
+    assert.match(await page.locator("ul.findings").first().textContent(), /Biased: direct:/);
+    const chips = await page.$$eval(".comparer .chip[data-sampler]", (cs) => cs.map((c) => c.dataset.sampler));
+    assert.ok(chips.includes("direct:independent"), `comparer samplers: ${chips}`);
+  });
+
   await check("the comparer draws an image", async () => {
     await settled();
     const s = await state();
