@@ -2,8 +2,8 @@
 // spp, 4 seeds): a copy of blue-noise's images 5% too bright, fed back as
 // another renderer, is biased at every spp; every sampler whose seed
 // randomises all its dimensions is unbiased at every spp. The image-plane
-// samplers (halton-rd, halton-owen, sobol-xor) scramble every dimension but
-// the pixel's: a pixel's positions are the same at every seed, so at low spp
+// samplers (halton-rd, halton-owen, sobol-xor, sobol-global-owen) scramble
+// every dimension but the pixel's: a pixel's positions are the same at every seed, so at low spp
 // their pixel-dimension error is one fixed error, which no number of seeds
 // averages away — on the Cornell box, whose light's outline carries most of
 // the error, it is biased at 1 spp (−3% to +7% of the image's mean).
@@ -105,7 +105,8 @@ TEST(StudyBias, ScaledCopyIsBiasedAndRandomisedSamplersAreNot) {
     ASSERT_EQ(second.exitCode, 0) << second.err;
 
     // Samplers that scramble every dimension but the pixel's (see the top).
-    const std::vector<std::string> imagePlane = {"halton-rd", "halton-owen", "sobol-xor"};
+    const std::vector<std::string> imagePlane = {"halton-rd", "halton-owen", "sobol-xor",
+                                                 "sobol-global-owen"};
     int bright = 0, pathlab = 0;
     for (const BiasLine& b : readBiasCsv(out / "bias.csv")) {
         const std::string where = b.scene + " " + b.sampler + " " + std::to_string(b.spp) +
