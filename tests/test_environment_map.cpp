@@ -8,10 +8,10 @@
 #include <cmath>
 
 #include "chi_square.h"
+#include "core/equal_area.h"
 #include "core/image.h"
 #include "core/rng.h"
 #include "render/environment_light.h"
-#include "core/equal_area.h"
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "scene/json_scene.h"

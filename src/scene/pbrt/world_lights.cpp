@@ -11,8 +11,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/image.h"
 #include "core/equal_area.h"
+#include "core/image.h"
 #include "scene/blackbody.h"
 #include "scene/mesh_utils.h"
 #include "scene/pbrt/parser_state.h"
