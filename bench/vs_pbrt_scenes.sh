@@ -30,6 +30,9 @@ fi
 [[ -x $pathlab ]] || { echo "vs_pbrt_scenes: build pathlab first ($pathlab)" >&2; exit 2; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
+# envmap-sun.pbrt's sky is generated, not committed.
+[[ -f $root/scenes/pbrt/sky-sun.pfm ]] ||
+    "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_sky_sun.py" "$root/scenes/pbrt/sky-sun.pfm"
 trap 'rm -f "$out"/*.part.pfm' EXIT
 
 seconds() { local t0=$1 t1=$2; awk "BEGIN { printf \"%.3f\", $t1 - $t0 }"; }

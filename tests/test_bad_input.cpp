@@ -105,6 +105,27 @@ const BadInput kCases[] = {
      "out.png", "{dir}/no-coordsys.pbrt:2:1: CoordSysTransform: no coordinate system named 'lamp'"},
     {"pbrt: unbalanced AttributeEnd", "render --scene {dir}/unbalanced.pbrt -o {dir}/out.png",
      "out.png", "{dir}/unbalanced.pbrt:2:1: unbalanced AttributeEnd: no AttributeBegin is open"},
+    {"pbrt: spot light cone out of range", "render --scene {dir}/wide-spot.pbrt -o {dir}/out.png",
+     "out.png",
+     "{dir}/wide-spot.pbrt:2:1: LightSource \"spot\": coneangle must be in (0, 180] degrees"},
+    {"pbrt: negative point light", "render --scene {dir}/negative-point.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/negative-point.pbrt:2:1: LightSource \"point\": I must not be negative"},
+    {"pbrt: distant light from = to", "render --scene {dir}/still-sun.pbrt -o {dir}/out.png",
+     "out.png",
+     "{dir}/still-sun.pbrt:2:1: LightSource \"distant\": 'from' and 'to' must be different "
+     "points"},
+    {"pbrt: environment map not square", "render --scene {dir}/wide-sky.pbrt -o {dir}/out.png",
+     "out.png",
+     "{dir}/wide-sky.pbrt:2:1: LightSource \"infinite\": 'wide-sky.pfm' is 4x2, not square: not "
+     "an equal-area octahedral map"},
+    {"pbrt: unknown light", "render --scene {dir}/unknown-light.pbrt -o {dir}/out.png", "out.png",
+     "{dir}/unknown-light.pbrt:2:1: unknown light 'lamp' (pbrt-v4 has point, spot, distant, "
+     "goniometric, projection, infinite)"},
+    {"spot light with a negative delta", "render --scene {dir}/bad-spot.json -o {dir}/out.png",
+     "out.png",
+     "{dir}/bad-spot.json: lights[0].coneDeltaAngle: coneDeltaAngle must be in [0, coneAngle]"},
+    {"distant light without direction", "render --scene {dir}/bad-sun.json -o {dir}/out.png",
+     "out.png", "{dir}/bad-sun.json: lights[0].direction: a direction must not be zero"},
     {"pbrt: unsupported feature", "render --scene {dir}/unsupported.pbrt -o {dir}/out.png",
      "out.png",
      "{dir}/unsupported.pbrt:2:1: material 'coateddiffuse' (or these parameters of it) is not "
@@ -232,6 +253,14 @@ class BadInputTable : public ::testing::Test {
     template <typename Put>
     void putScenes(const Put& put) {
         put("huge-size.json", sceneWith(R"(, "resolution": [65536, 65536])"));
+        const std::string sphere =
+            R"({"camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "fovY": 40},
+      "materials": {"m": {"type": "diffuse"}},
+      "spheres": [{"center": [0, 0, 0], "radius": 1, "material": "m"}], "lights": [)";
+        put("bad-spot.json", sphere + R"({"type": "spot", "position": [0, 3, 0],
+            "direction": [0, -1, 0], "intensity": 5, "coneAngle": 20, "coneDeltaAngle": -1}]})");
+        put("bad-sun.json",
+            sphere + R"({"type": "distant", "direction": [0, 0, 0], "radiance": 3}]})");
         put("empty.obj", "");
         put("garbage.obj", "this is not an OBJ file\n\x01\x02\n");
         fs::create_directory(dir / "objdir");
@@ -270,6 +299,15 @@ class BadInputTable : public ::testing::Test {
         put("no-coordsys.pbrt", "WorldBegin\nCoordSysTransform \"lamp\"\n");
         put("unbalanced.pbrt", "WorldBegin\nAttributeEnd\n");
         put("unsupported.pbrt", "WorldBegin\nMaterial \"coateddiffuse\"\n" + tri + "\n");
+        put("wide-spot.pbrt", "WorldBegin\nLightSource \"spot\" \"float coneangle\" 200\n" + tri);
+        put("negative-point.pbrt", "WorldBegin\nLightSource \"point\" \"rgb I\" [1 -1 1]\n" + tri);
+        put("still-sun.pbrt",
+            "WorldBegin\nLightSource \"distant\" \"point3 from\" [1 1 1] \"point3 to\" [1 1 1]\n" +
+                tri);
+        writeTexture(dir / "wide-sky.pfm", 0, 0.5f);
+        put("wide-sky.pbrt",
+            "WorldBegin\nLightSource \"infinite\" \"string filename\" \"wide-sky.pfm\"\n" + tri);
+        put("unknown-light.pbrt", "WorldBegin\nLightSource \"lamp\"\n" + tri);
     }
 
     void SetUp() override {

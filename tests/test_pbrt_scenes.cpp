@@ -160,13 +160,13 @@ TEST_F(PbrtRenderCli, UnsupportedIsOneLineOrLenientWarnings) {
     const std::string scene = scenes.write(
         "s.pbrt",
         "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
-        "LightSource \"point\" \"rgb I\" [1 1 1]\nLightSource \"infinite\"\n"
+        "LightSource \"goniometric\" \"rgb I\" [1 1 1]\nLightSource \"infinite\"\n"
         "Material \"coateddiffuse\"\nShape \"sphere\"\n");
     const std::string out = (dir / "a.exr").string();
     const auto strict = testing::runPathlab("render --scene " + scene + " -o " + out, dir);
     EXPECT_EQ(strict.exitCode, 2);
     EXPECT_EQ(strict.err, "pathlab: error: " + scene +
-                              ":3:1: LightSource 'point' is not supported (--lenient "
+                              ":3:1: LightSource 'goniometric' is not supported (--lenient "
                               "substitutes no light)\n");
     EXPECT_FALSE(std::filesystem::exists(out));
     const auto lenient =

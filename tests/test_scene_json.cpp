@@ -307,10 +307,13 @@ TEST(JsonScene, DocumentedExampleLoads) {
     dir.write("models/bunny.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     Image fur(1, 1);
     writeImage((dir.path() / "fur.png").string(), fur);
+    writeImage((dir.path() / "sky.exr").string(), Image(4, 4));
     const SceneDescription s = loadScene(dir.write("example.json", example));
     EXPECT_EQ(s.name, "example");
     EXPECT_EQ(s.materials.size(), 7u);  // six named and the lights' black one
     EXPECT_EQ(s.spheres.size(), 1u);
+    EXPECT_EQ(s.punctualLights.size(), 3u);
+    EXPECT_EQ(s.environmentMap.width, 4);
 }
 
 }  // namespace

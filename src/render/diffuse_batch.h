@@ -32,13 +32,14 @@ struct DiffuseBatchInput {
     // samples the light itself.
     float lightU[kBatchLanes], lightV[kBatchLanes];
     // Otherwise the light sample the caller drew (LightSet::sample): direction,
-    // distance (infinite for the environment), radiance, pdf, and whether
-    // there is one.
+    // distance (infinite for the environment), radiance, pdf, whether there
+    // is one and whether it is a point, spot or distant light's (MIS weight 1).
     float lightWx[kBatchLanes], lightWy[kBatchLanes], lightWz[kBatchLanes];
     float lightDistance[kBatchLanes];
     float lightR[kBatchLanes], lightG[kBatchLanes], lightB[kBatchLanes];
     float lightPdf[kBatchLanes];
     int lightValid[kBatchLanes];
+    int lightDelta[kBatchLanes];
 };
 
 struct DiffuseBatchOutput {

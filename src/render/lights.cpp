@@ -239,7 +239,8 @@ float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
 }
 
 LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling strategy)
-    : environment_(scene.environment) {
+    : punctual_(scene.punctualLights), environment_(scene.environment) {
+    if (!scene.environmentMap.empty()) environmentMap_.emplace(scene.environmentMap);
     triangleLight_.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -278,19 +279,47 @@ static double irradianceAt(const AreaLight& l, Vec3f x) {
 
 void LightSet::buildDistribution(Vec3f focus) {
     std::vector<double> weight;
-    double areaPower = 0, areaIrradiance = 0;
+    double finitePower = 0, finiteIrradiance = 0;
     for (const AreaLight& l : lights_) {
         weight.push_back(l.power());
-        areaPower += l.power();
-        areaIrradiance += irradianceAt(l, focus);
+        finitePower += l.power();
+        finiteIrradiance += irradianceAt(l, focus);
+    }
+    // Lights without finite power (distant lights, the environment): their
+    // share of the choices is their share of the irradiance at the focus.
+    std::vector<size_t> infinite;
+    std::vector<double> infiniteIrradiance;
+    for (const PunctualLight& l : punctual_) {
+        if (l.type == PunctualLightType::Distant) {
+            infinite.push_back(weight.size());
+            infiniteIrradiance.push_back(punctualIrradianceAt(l, focus));
+            weight.push_back(0);
+            continue;
+        }
+        weight.push_back(punctualPower(l));
+        finitePower += punctualPower(l);
+        finiteIrradiance += punctualIrradianceAt(l, focus);
     }
     if (!isBlack(environment_)) {
         // A uniform environment delivers π·L onto a surface facing any way.
-        const double envIrradiance = kPi * double(luminance(environment_));
-        const double share = areaPower > 0 && areaIrradiance > 0
-                                 ? envIrradiance / (envIrradiance + areaIrradiance)
+        infinite.push_back(weight.size());
+        infiniteIrradiance.push_back(kPi * double(luminance(environment_)));
+        weight.push_back(0);
+    }
+    if (environmentMap_) {
+        infinite.push_back(weight.size());
+        infiniteIrradiance.push_back(environmentMap_->meanIrradiance());
+        weight.push_back(0);
+    }
+    double infiniteTotal = 0;
+    for (double e : infiniteIrradiance) infiniteTotal += e;
+    if (infiniteTotal > 0) {
+        const double share = finitePower > 0 && finiteIrradiance > 0
+                                 ? infiniteTotal / (infiniteTotal + finiteIrradiance)
                                  : 1.0;
-        weight.push_back(share >= 1 ? 1.0 : areaPower * share / (1 - share));
+        const double infiniteWeight = share >= 1 ? 1.0 : finitePower * share / (1 - share);
+        for (size_t j = 0; j < infinite.size(); ++j)
+            weight[infinite[j]] = infiniteWeight * (infiniteIrradiance[j] / infiniteTotal);
     }
     double total = 0;
     for (double w : weight) total += w;
@@ -317,7 +346,15 @@ std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uCh
                  cdf_.size() - 1);
     const float choicePmf = pmf(i);
     if (choicePmf <= 0) return std::nullopt;
-    if (i == lights_.size()) {  // the environment: uniform directions
+    if (i >= lights_.size() && i < lights_.size() + punctual_.size())
+        return samplePunctual(i - lights_.size(), ref, choicePmf);
+    if (environmentMap_ && i == environmentMapIndex()) {
+        const auto s = environmentMap_->sample(u);
+        if (!s || !(s->pdf > 0) || isBlack(s->radiance)) return std::nullopt;
+        return LightSample{s->wi, std::numeric_limits<float>::infinity(), s->radiance,
+                           choicePmf * s->pdf};
+    }
+    if (i == lights_.size() + punctual_.size()) {  // the environment: uniform directions
         return LightSample{sampleUniformSphere(u), std::numeric_limits<float>::infinity(),
                            environment_, choicePmf * uniformSpherePdf()};
     }
@@ -335,13 +372,39 @@ std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uCh
     return LightSample{wi, dist, Le, choicePmf * s->pdf};
 }
 
+// pbrt-v4's PointLight / SpotLight::SampleLi (I / r² towards the light) and
+// DistantLight::SampleLi (L from −direction, unbounded shadow ray).
+std::optional<LightSample> LightSet::samplePunctual(size_t i, Vec3f ref, float choicePmf) const {
+    const PunctualLight& l = punctual_[i];
+    if (l.type == PunctualLightType::Distant)
+        return LightSample{-l.direction, std::numeric_limits<float>::infinity(), l.radiance,
+                           choicePmf, true};
+    const Vec3f d = l.position - ref;
+    const float dist2 = dot(d, d);
+    if (!(dist2 > 0)) return std::nullopt;
+    const float dist = std::sqrt(dist2);
+    const Vec3f wi = d / dist;
+    const Vec3f I = l.type == PunctualLightType::Spot ? spotIntensity(l, -wi) : l.intensity;
+    if (isBlack(I)) return std::nullopt;
+    return LightSample{wi, dist, I / dist2, choicePmf, true};
+}
+
 float LightSet::pdfAreaLight(int light, Vec3f ref, Vec3f ns, Vec3f p) const {
     return pmf(size_t(light)) * lights_[size_t(light)].pdfFrom(ref, ns, p);
 }
 
+size_t LightSet::environmentMapIndex() const {
+    return lights_.size() + punctual_.size() + (isBlack(environment_) ? 0 : 1);
+}
+
+float LightSet::pdfEnvironmentMap(Vec3f dir) const {
+    if (!environmentMap_ || cdf_.empty()) return 0;
+    return pmf(environmentMapIndex()) * environmentMap_->pdf(dir);
+}
+
 float LightSet::pdfEnvironment() const {
     if (cdf_.empty() || isBlack(environment_)) return 0;
-    return pmf(lights_.size()) * uniformSpherePdf();
+    return pmf(lights_.size() + punctual_.size()) * uniformSpherePdf();
 }
 
 }  // namespace pathlab

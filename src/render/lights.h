@@ -7,6 +7,11 @@
 // of radius r, which lets a wide floor hand it nearly every sample); here it
 // gets the share of the irradiance it delivers at the scene's focus point (the
 // camera's target) next to the area lights' unoccluded irradiance there.
+// Point, spot and distant lights (punctual_lights.h) join the choice: point
+// and spot lights by their power, distant lights, which have no finite power
+// either, by their irradiance at the focus point as the environment. An image
+// environment map (environment_light.h) is one more such light, after the
+// constant environment.
 //
 // Lights are sampled uniformly by area unless LightSampling::SolidAngle is
 // asked for. Then a point on a rectangular light is sampled by the solid angle
@@ -25,6 +30,8 @@
 #include <vector>
 
 #include "core/math.h"
+#include "render/environment_light.h"
+#include "render/punctual_lights.h"
 #include "render/sampling_routines.h"
 #include "scene/scene.h"
 
@@ -74,6 +81,9 @@ struct LightSample {
     float distance;  // to the light point; infinity for the environment
     Vec3f radiance;  // arriving along −wi
     float pdf;       // solid-angle density, including the light-choice probability
+    // A point, spot or distant light: `pdf` is the choice probability alone,
+    // and no BSDF sample competes with the sample (MIS weight 1).
+    bool delta = false;
 };
 
 // Uniform area sampling, the default: the same arithmetic as sampleFrom followed
@@ -106,6 +116,7 @@ class LightSet {
     bool empty() const { return cdf_.empty(); }
     size_t areaLightCount() const { return lights_.size(); }
     const AreaLight& areaLight(int i) const { return lights_[size_t(i)]; }
+    size_t punctualLightCount() const { return punctual_.size(); }
     // The light a triangle belongs to, or −1.
     int lightOfTriangle(unsigned mesh, unsigned triangle) const;
     // lightOfTriangle of all the mesh's triangles, by triangle.
@@ -131,15 +142,27 @@ class LightSet {
     float pdfAreaLight(int light, Vec3f ref, Vec3f ns, Vec3f p) const;
     float pdfEnvironment() const;
     Vec3f environment() const { return environment_; }
+    // The image environment map, when the scene has one: its radiance from
+    // direction dir and the solid-angle pdf (with choice probability) with
+    // which sample() reaches dir through it.
+    bool hasEnvironmentMap() const { return environmentMap_.has_value(); }
+    Vec3f environmentMapRadiance(Vec3f dir) const { return environmentMap_->radiance(dir); }
+    float pdfEnvironmentMap(Vec3f dir) const;
 
   private:
     std::optional<LightSample> sampleChosen(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
+    std::optional<LightSample> samplePunctual(size_t i, Vec3f ref, float choicePmf) const;
     float pmf(size_t i) const;
     void buildDistribution(Vec3f focus);
     std::vector<AreaLight> lights_;
     std::vector<std::vector<int>> triangleLight_;  // per mesh, per triangle
+    std::vector<PunctualLight> punctual_;
+    std::optional<EnvironmentLight> environmentMap_;
+    size_t environmentMapIndex() const;  // in cdf_
     Vec3f environment_;
-    std::vector<float> cdf_;      // over area lights, then the environment if present
+    // Over area lights, then punctual lights, then the environment if present,
+    // then the environment map if present.
+    std::vector<float> cdf_;
     bool onlyAreaLight_ = false;  // lights_[0] is the only light, sampled by area
 };
 

@@ -92,7 +92,7 @@ inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
     // the segment, ε off it, and crosses the light's plane up to ε/cosθ early:
     // grazing samples of a nearby light were blocked by the light.)
     const Vec3f origin = scene.offsetOrigin(si, ls->wi);
-    const float weight = powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
+    const float weight = ls->delta ? 1.0f : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
     const Vec3f contribution = f * ls->radiance * (weight / ls->pdf);
     if (std::isinf(ls->distance)) return DirectSample{origin, ls->wi, ls->distance, contribution};
     return DirectSample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
@@ -126,6 +126,16 @@ bool pathContinues(const IntegratorSettings& settings, int depth, VertexDimensio
     return !isBlack(beta);
 }
 
+// An escaped ray's radiance from the image environment map, weighted
+// against the map's light sample for the same direction.
+inline void addEnvironmentMap(const LightSet& lights, Vec3f dir, Vec3f beta, bool unweighted,
+                              float prevBsdfPdf, Vec3f& L) {
+    const Vec3f Le = lights.environmentMapRadiance(dir);
+    if (isBlack(Le)) return;
+    L += beta * Le *
+         (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironmentMap(dir)));
+}
+
 // What the ray that found a vertex (or escaped: !found) adds to L: the
 // environment or the emission of the light it hit, weighted against the light
 // sample that could have reached the same point (power heuristic) — unweighted
@@ -139,6 +149,8 @@ inline void addEmission(const LightSet& lights, bool found, const SurfaceInterac
         if (!isBlack(env))
             L += beta * env *
                  (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironment()));
+        if (lights.hasEnvironmentMap())
+            addEnvironmentMap(lights, dir, beta, unweighted, prevBsdfPdf, L);
         return;
     }
     if (si.light >= 0) {
@@ -245,6 +257,7 @@ inline void setBatchLightSample(DiffuseBatchInput& in, int k,
     in.lightDistance[k] = ls->distance;
     in.lightR[k] = ls->radiance.x, in.lightG[k] = ls->radiance.y, in.lightB[k] = ls->radiance.z;
     in.lightPdf[k] = ls->pdf;
+    in.lightDelta[k] = ls->delta;
 }
 
 // The state of the paths estimateRadianceBatch traces together. Path k's

@@ -372,7 +372,79 @@ int blackMaterial(Builder& b) {
     return b.materialIndex[name] = int(b.scene.materials.size()) - 1;
 }
 
+// An image environment map (docs/scene-format.md): pbrt-v4's equal-area
+// octahedral layout, its +z world +z.
+void parseEnvironmentMap(const Node& n, Builder& b) {
+    n.keys({"file", "scale", "sampling"});
+    const Node f = n["file"];
+    const std::string path = f.file().lexically_normal().string();
+    Image img;
+    try {
+        img = readImage(path);
+    } catch (const InputError& e) {
+        f.fail(e.what());
+    }
+    if (img.width != img.height)
+        f.fail("'" + path + "' is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+               ", not square: not an equal-area octahedral map");
+    for (float v : img.rgb)
+        if (!std::isfinite(v) || v < 0)
+            f.fail("'" + path + "' has a negative, NaN or infinite pixel");
+    const float scale = n.has("scale") ? n["scale"].positive() : 1;
+    EnvironmentImage env;
+    if (n.has("sampling")) {
+        const std::string how = n["sampling"].string();
+        if (how != "luminance" && how != "uniform")
+            n["sampling"].fail("must be \"luminance\" or \"uniform\", got '" + how + "'");
+        env.uniformSampling = how == "uniform";
+    }
+    env.width = img.width;
+    env.height = img.height;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) env.texels.push_back(img.at(x, y) * scale);
+    b.scene.environmentMap = std::move(env);
+}
+
+// A point, spot or distant light (docs/scene-format.md), as pbrt-v4's.
+void parsePunctualLight(const Node& n, const std::string& type, Builder& b) {
+    PunctualLight l;
+    const auto unit = [](const Node& d) {
+        const Vec3f v = d.vec3();
+        if (!(length(v) > 0)) d.fail("a direction must not be zero");
+        return normalize(v);
+    };
+    if (type == "point") {
+        n.keys({"name", "type", "position", "intensity"});
+        l.type = PunctualLightType::Point;
+        l.position = n["position"].vec3();
+        l.intensity = n["intensity"].colour();
+    } else if (type == "spot") {
+        n.keys(
+            {"name", "type", "position", "direction", "intensity", "coneAngle", "coneDeltaAngle"});
+        l.type = PunctualLightType::Spot;
+        l.position = n["position"].vec3();
+        l.direction = unit(n["direction"]);
+        l.intensity = n["intensity"].colour();
+        const float cone = n.has("coneAngle") ? n["coneAngle"].number() : 30;
+        const float delta = n.has("coneDeltaAngle") ? n["coneDeltaAngle"].number() : 5;
+        if (!(cone > 0 && cone <= 180)) n["coneAngle"].fail("must be in (0, 180] degrees");
+        if (!(delta >= 0 && delta <= cone))
+            n[n.has("coneDeltaAngle") ? "coneDeltaAngle" : "coneAngle"].fail(
+                "coneDeltaAngle must be in [0, coneAngle]");
+        setSpotCone(l, cone, delta);
+    } else {
+        n.keys({"name", "type", "direction", "radiance"});
+        l.type = PunctualLightType::Distant;
+        l.direction = unit(n["direction"]);
+        l.radiance = n["radiance"].colour();
+    }
+    b.scene.punctualLights.push_back(l);
+}
+
 void parseLight(const Node& n, size_t index, Builder& b) {
+    const std::string lightType = n["type"].string();
+    if (lightType == "point" || lightType == "spot" || lightType == "distant")
+        return parsePunctualLight(n, lightType, b);
     n.keys({"name", "type", "vertices", "emission", "twoSided", "material"});
     Mesh mesh;
     mesh.name = n.has("name") ? n["name"].string() : "light" + std::to_string(index);
@@ -384,7 +456,7 @@ void parseLight(const Node& n, size_t index, Builder& b) {
     else if (type == "triangle")
         corners = 3;
     else
-        typeNode.fail("unknown light type '" + type + "' (quad, triangle)");
+        typeNode.fail("unknown light type '" + type + "' (quad, triangle, point, spot, distant)");
     const Node v = n["vertices"];
     if (v.size() != size_t(corners))
         v.fail("a " + type + " light needs " + std::to_string(corners) + " vertices, got " +
@@ -457,8 +529,8 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     const Json j = parseText(text, source);
     const Context ctx{source, baseDir};
     const Node root(j, "", ctx);
-    root.keys({"name", "credit", "camera", "resolution", "environment", "materials", "meshes",
-               "lights", "spheres"});
+    root.keys({"name", "credit", "camera", "resolution", "environment", "environmentMap",
+               "materials", "meshes", "lights", "spheres"});
     Builder b;
     SceneDescription& s = b.scene;
     s.name = root.has("name") ? root["name"].string() : fs::path(source).stem().string();
@@ -482,6 +554,7 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
         s.resolution = {r.at(0).imageSide(), r.at(1).imageSide()};
     }
     if (root.has("environment")) s.environment = root["environment"].colour();
+    if (root.has("environmentMap")) parseEnvironmentMap(root["environmentMap"], b);
 
     if (root.has("materials")) {
         const Node mats = root["materials"];
@@ -533,6 +606,9 @@ Json toJson(Vec3f v) {
 }  // namespace
 
 std::string sceneToJson(const SceneDescription& s) {
+    if (!s.environmentMap.empty())
+        throw InputError("cannot write scene '" + s.name +
+                         "': its environment map has no file to refer to");
     Json j;
     j["name"] = s.name;
     if (!s.credit.empty()) j["credit"] = s.credit;
@@ -602,6 +678,27 @@ std::string sceneToJson(const SceneDescription& s) {
         meshes.push_back(o);
     }
     j["meshes"] = meshes;
+    if (!s.punctualLights.empty()) {
+        Json lights = Json::array();
+        for (const PunctualLight& l : s.punctualLights) {
+            if (l.type == PunctualLightType::Point)
+                lights.push_back({{"type", "point"},
+                                  {"position", toJson(l.position)},
+                                  {"intensity", toJson(l.intensity)}});
+            else if (l.type == PunctualLightType::Spot)
+                lights.push_back({{"type", "spot"},
+                                  {"position", toJson(l.position)},
+                                  {"direction", toJson(l.direction)},
+                                  {"intensity", toJson(l.intensity)},
+                                  {"coneAngle", shortest(l.coneAngle)},
+                                  {"coneDeltaAngle", shortest(l.coneDeltaAngle)}});
+            else
+                lights.push_back({{"type", "distant"},
+                                  {"direction", toJson(l.direction)},
+                                  {"radiance", toJson(l.radiance)}});
+        }
+        j["lights"] = lights;
+    }
     if (!s.spheres.empty()) {
         Json spheres = Json::array();
         for (const Sphere& sp : s.spheres)

@@ -9,6 +9,8 @@
 
 #include "core/affine.h"
 #include "core/math.h"
+#include "scene/environment_image.h"
+#include "scene/punctual_light.h"
 
 namespace pathlab {
 
@@ -150,8 +152,10 @@ struct SceneDescription {
     std::vector<Texture> textures;
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
-    Vec3f environment{0.0f};  // constant radiance arriving from every direction
-    std::string credit;       // attribution to show wherever the scene's images appear
+    Vec3f environment{0.0f};                    // constant radiance arriving from every direction
+    std::vector<PunctualLight> punctualLights;  // point, spot and distant lights
+    EnvironmentImage environmentMap;            // radiance by direction; empty: none
+    std::string credit;  // attribution to show wherever the scene's images appear
     Film film;
     RenderDefaults defaults;
     std::vector<InstancedObject> objects;

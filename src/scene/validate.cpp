@@ -195,6 +195,16 @@ void validateScene(const SceneDescription& scene, const std::string& source) {
                          "x" + std::to_string(scene.resolution.y));
     if (!nonNegativeFinite(scene.environment))
         fail(source, "environment " + str(scene.environment) + " is negative or non-finite");
+    for (size_t i = 0; i < scene.punctualLights.size(); ++i) {
+        const PunctualLight& l = scene.punctualLights[i];
+        const std::string what = "light " + std::to_string(i);
+        if (!nonNegativeFinite(l.intensity) || !nonNegativeFinite(l.radiance))
+            fail(source, what + " has a negative or non-finite intensity or radiance");
+        if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) ||
+            !std::isfinite(l.position.z) || !(std::abs(length(l.direction) - 1) < 1e-3f))
+            fail(source,
+                 what + " has a non-finite position or a direction that is not a unit vector");
+    }
     for (const Texture& t : scene.textures)
         if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * t.height)
             fail(source, "a texture is empty or has the wrong number of texels");

@@ -67,6 +67,23 @@ void hashGeometry(ContentHash& h, const SceneDescription& s) {
         h.integer(uint64_t(int64_t(sp.material)));
     }
     hashVec(h, s.environment);
+    // Only when there are any, so that scenes without them keep their hashes.
+    if (!s.punctualLights.empty()) h.integer(s.punctualLights.size());
+    for (const PunctualLight& l : s.punctualLights) {
+        h.integer(uint64_t(l.type));
+        hashVec(h, l.position);
+        hashVec(h, l.direction);
+        hashVec(h, l.intensity);
+        hashVec(h, l.radiance);
+        h.real(l.cosFalloffStart);
+        h.real(l.cosFalloffEnd);
+    }
+    if (const EnvironmentImage& env = s.environmentMap; !env.empty()) {
+        h.integer(uint64_t(env.width));
+        hashArray(h, env.texels);
+        for (int c = 0; c < 3; ++c) hashVec(h, env.toWorld[c]);
+        h.integer(env.uniformSampling);
+    }
 }
 
 nlohmann::json readJson(const fs::path& path) {

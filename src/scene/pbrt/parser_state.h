@@ -19,6 +19,7 @@ namespace pathlab::pbrt {
 struct AreaLight {
     Vec3f radiance{1.0f};
     bool twoSided = false;
+    float power = -1;  // > 0: the radiance is scaled to this power per shape
     SourceLocation where;
 };
 
@@ -95,6 +96,14 @@ void areaLightSource(ImportState& st, const std::string& type, const ParamSet& p
                      const SourceLocation& where);
 void lightSource(ImportState& st, const std::string& type, const ParamSet& params,
                  const SourceLocation& where);
+// The emission of a shape under the current area light: its radiance, or with
+// `power`, the radiance that gives that power to each of the shape's
+// `primitives` (pbrt-v4 makes one light per triangle or patch: consecutive
+// equal runs of the world-space mesh's triangles) — or, when shapeArea > 0,
+// to a shape of that area (pbrt-v4's Sphere::Area and Disk::Area, in the
+// shape's own space).
+Vec3f areaLightEmission(ImportState& st, const AreaLight& light, const Mesh& mesh,
+                        size_t primitives, double shapeArea, const SourceLocation& where);
 void texture(ImportState& st, const std::string& name, const std::string& colorType,
              const std::string& type, const ParamSet& params, const SourceLocation& where);
 

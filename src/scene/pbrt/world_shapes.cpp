@@ -128,7 +128,8 @@ std::optional<float> similarityScale(const Matrix4& m) {
 
 // The shape's material, light and transform, then into the scene (or the
 // object being defined).
-void place(ImportState& st, Mesh mesh, const std::string& shapeName, const SourceLocation& where) {
+void place(ImportState& st, Mesh mesh, const std::string& shapeName, const SourceLocation& where,
+           size_t primitives = 0, double shapeArea = 0) {
     const GraphicsState& gs = st.gs;
     if (!gs.ctm.isAffine())
         throw errorAt(where, "Shape \"" + shapeName + "\" under a projective transform");
@@ -146,7 +147,9 @@ void place(ImportState& st, Mesh mesh, const std::string& shapeName, const Sourc
                            "as in pbrt-v4)",
                            "a shape that does not emit");
         } else {
-            mesh.emission = gs.areaLight->radiance;
+            mesh.emission =
+                areaLightEmission(st, *gs.areaLight, mesh,
+                                  primitives ? primitives : mesh.triangleCount(), shapeArea, where);
             mesh.twoSided = gs.areaLight->twoSided;
             dropDegenerateTriangles(mesh);
             if (!mesh.normals.empty()) faceNormalsForward(mesh);
@@ -221,7 +224,9 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
                 s.spheres.push_back(sp);
         } else {
             // Partial, sheared, or emitting (pathlab's lights are triangles).
-            place(st, tessellatedSphere(r, zMin, zMax, phiMax), type, where);
+            const double zLow = std::max(zMin, -r), zHigh = std::min(zMax, r);
+            place(st, tessellatedSphere(r, zMin, zMax, phiMax), type, where, 1,
+                  std::min(phiMax, 360.0f) * kPi / 180 * r * (zHigh - zLow));
         }
     } else if (type == "disk") {
         const float radius = ps.getFloat("radius", 1), inner = ps.getFloat("innerradius", 0);
@@ -230,7 +235,9 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
         place(st,
               tessellateDisk(ps.getFloat("height", 0), radius, inner, ps.getFloat("phimax", 360),
                              256),
-              type, where);
+              type, where, 1,
+              std::min(ps.getFloat("phimax", 360), 360.0f) * kPi / 180 * 0.5 *
+                  (double(radius) * radius - double(inner) * inner));
     } else if (type == "bilinearmesh") {
         const std::vector<Vec3f> P = ps.getPoint3s("P");
         if (P.empty()) throw errorAt(where, "bilinearmesh: \"point3 P\" is missing");
@@ -241,7 +248,7 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
         checkPerVertex(uv.size(), P.size(), "uvs", type, where);
         if (ps.find("emissionfilename"))
             st.unsupported(where, "bilinearmesh emissionfilename", "uniform emission");
-        place(st, bilinearPatchMesh(P, idx, N, uv, 16), type, where);
+        place(st, bilinearPatchMesh(P, idx, N, uv, 16), type, where, idx.size() / 4);
     } else if (type == "loopsubdiv") {
         const std::vector<Vec3f> P = ps.getPoint3s("P");
         if (P.empty()) throw errorAt(where, "loopsubdiv: \"point3 P\" is missing");
