@@ -171,7 +171,8 @@ void bindRender(py::module_& m) {
     m.def("builtin_scenes", &builtinSceneNames);
     m.def(
         "render",
-        [](const Scene& scene, std::optional<std::string> sampler, std::optional<int64_t> spp,
+        // By value: the render holds the scene even if Python drops it meanwhile.
+        [](Scene scene, std::optional<std::string> sampler, std::optional<int64_t> spp,
            std::optional<std::string> seed, std::optional<std::string> size,
            std::optional<int64_t> maxDepth, bool russianRoulette, int64_t rouletteDepth,
            int64_t threads, const py::object& progress, double interval, bool withStats) {

@@ -1,6 +1,10 @@
 """pathlab from Python: render, draw sampler points, compute image metrics and
 run or read studies, with numpy arrays in and out.
 
+Rendering: load_scene, render, render_progressive. Samplers: samplers, points.
+Metrics: mse, rmse, relmse, psnr, flip, flip_stats, flip_map, error_spectrum.
+Files: read_image, write_image. Studies: run_study, Study.
+
 The functions call the same C++ library as the ``pathlab`` command line, so a
 render equals ``pathlab render``'s EXR bit for bit and every metric equals
 ``pathlab compare --json`` to the last bit. Images are float32 arrays of shape
@@ -78,18 +82,23 @@ def _text(value, name):
     return str(value)
 
 
+_INT64_MIN, _INT64_MAX = -(2 ** 63), 2 ** 63 - 1
+
+
 def _int_or_none(value, name):
+    """An integer keyword, saturated to 64 bits as the command line reads
+    "99999999999999999999" (then refused by range, naming the value)."""
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, int):
         try:
             import numpy
             if isinstance(value, numpy.integer):
-                return int(value)
+                return _int_or_none(int(value), name)
         except ImportError:
             pass
         raise ValueError("%s must be an integer, got %r" % (name, value))
-    return value
+    return min(max(value, _INT64_MIN), _INT64_MAX)
 
 
 def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, threads=None,

@@ -51,6 +51,7 @@ def test_a_loaded_scene_renders_the_same_as_its_name():
 
 @pytest.mark.parametrize("keyword,value,flag,text", [
     ("spp", 0, "--spp", "0"),
+    ("spp", 10 ** 20, "--spp", "99999999999999999999"),
     ("max_depth", 2000, "--max-depth", "2000"),
     ("size", (0, 5), "--size", "0x5"),
     ("seed", -1, "--seed", "-1"),
