@@ -108,8 +108,9 @@ def test_ctrl_c_interrupts_a_render_before_it_ends():
     finally:
         timer.cancel()
     assert calls, "the progress callback never ran"
-    done, total = calls[-1]
-    assert done < total
+    # Never the report of a finished render (32×32 tiles); under load the
+    # interrupt may even come before the first tile (total still 0).
+    assert all(done < 1024 for done, _ in calls)
 
 
 def test_two_python_threads_render_at_once_deterministically():
