@@ -8,7 +8,7 @@ ifneq ($(wildcard $(SHARED_SCENES)/wolf/wolf.pmd),)
 export PATHLAB_ASSETS ?= $(SHARED_SCENES)
 endif
 
-.PHONY: setup build test demo bench fuzz sanitize format clean
+.PHONY: setup build python test demo bench fuzz sanitize format clean
 
 setup:
 	@scripts/setup.sh
@@ -43,6 +43,12 @@ $(PGO_DATA)/trained: $(PGO_SOURCES)
 build: setup $(PGO_STAMP)
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(RELEASE_OPTIONS) >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
+
+# The Python module alone, into $(BUILD)/python/pathlab (docs/python.md);
+# `make build` builds it with everything else, `make test` runs its pytest suite.
+python: setup $(PGO_STAMP)
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(RELEASE_OPTIONS) >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target pathlab_python
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -20,6 +20,9 @@ PACKAGES=(
   embree-tools python3-tinyobjloader
   # Public PLY models (ASCII, binary, quads, points only) for the PLY tests.
   assimp-testmodels
+  # The Python module (docs/python.md): pybind11 and Python's headers to build
+  # it, pytest for its tests, pandas for study tables as DataFrames.
+  pybind11-dev python3-dev python3-pytest python3-pandas python3-setuptools
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi

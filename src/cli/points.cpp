@@ -13,10 +13,10 @@
 #include <tuple>
 
 #include "cli/commands.h"
-#include "cli/options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/seed.h"
 #include "sampling/registry.h"
 #include "sampling/spectrum.h"
 

@@ -324,6 +324,8 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
 
     std::vector<TileResult> results(tiles.size());
     ProgressBar progress(settings.progress, tiles.size());
+    RenderControl* const control = settings.control;
+    if (control) control->tilesTotal = tiles.size();
     std::optional<tbb::global_control> limit;
     if (settings.threads > 0)
         limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
@@ -333,6 +335,10 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     static const char tasksStart = 0, tasksEnd = 0;
     const auto renderOneTile = [&](size_t t) {
         happensAfter(&tasksStart);
+        if (control && control->cancel.load(std::memory_order_relaxed)) {
+            happensBefore(&tasksEnd);
+            return;
+        }
         {
             const ScopedFlushDenormals denormals;  // as Embree asks (core/float_mode.h)
             AnySampler sampler = prototype;
@@ -346,6 +352,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
                 sampler);
         }
         progress.advance();
+        if (control) ++control->tilesDone;
         happensBefore(&tasksEnd);
     };
     happensBefore(&tasksStart);
@@ -354,6 +361,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     const double parallelSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - parallelStart).count();
     happensAfter(&tasksEnd);
+    if (control && control->cancel) throw RenderCancelled();
 
     std::vector<double> pixelSeconds(checkpoints.spp.size(), 0.0);
     for (const TileResult& r : results) {

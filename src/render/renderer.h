@@ -3,7 +3,9 @@
 // are summed in index order, so the image is bit-identical for any thread count.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,18 @@
 #include "render/render_scene.h"
 
 namespace pathlab {
+
+// Watching and stopping a render from another thread (the Python module's
+// progress callback and Ctrl-C): the renderer counts finished tiles, and once
+// `cancel` is set it starts no further tile and throws RenderCancelled.
+struct RenderControl {
+    std::atomic<bool> cancel{false};
+    std::atomic<size_t> tilesDone{0}, tilesTotal{0};
+};
+
+struct RenderCancelled : std::runtime_error {
+    RenderCancelled() : std::runtime_error("render cancelled") {}
+};
 
 struct RenderSettings {
     std::string sampler = "independent";
@@ -33,6 +47,7 @@ struct RenderSettings {
     // box and triangle filters the same image, bit for bit, as the plain mean.
     // Off only to compare the two.
     bool weightedFilm = false;
+    RenderControl* control = nullptr;  // optional; outlives the render
 };
 
 struct RenderStats {

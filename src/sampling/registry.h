@@ -46,26 +46,28 @@ const std::vector<SamplerInfo>& samplerInfos();
 // The sampler called `name`; throws InputError like makeSampler when unknown.
 const SamplerInfo& samplerInfo(const std::string& name);
 
+// Does a bounce's 2D draw (light point, BSDF direction) start at dimension d?
+inline bool startsLayoutPair(int d) {
+    if (d < dims::kFirstBounce) return false;
+    const int offset = (d - dims::kFirstBounce) % dims::kDimsPerBounce;
+    return offset == dims::kLightPoint || offset == dims::kBsdfDirection;
+}
+
 // The dimensions (i, j) of sample `index` at `pixel`, drawn the way the
 // renderer draws them: dimensions (0, 1) through getPixel2D(), a pair the
 // layout draws as 2D (light point, BSDF direction) through get2D(), anything
 // else as two 1D draws. Used by `pathlab points` and the tests.
 template <typename S>
 Vec2f sampleDimensions(S& sampler, Vec2i pixel, int index, int i, int j) {
-    const auto isLayoutPair = [](int d) {
-        if (d < dims::kFirstBounce) return false;
-        const int offset = (d - dims::kFirstBounce) % dims::kDimsPerBounce;
-        return offset == dims::kLightPoint || offset == dims::kBsdfDirection;
-    };
     if (i == dims::kPixel && j == dims::kPixel + 1) {
         sampler.startPixelSample(pixel, index, 0);
         return sampler.getPixel2D();
     }
-    if (j == i + 1 && isLayoutPair(i)) {
+    if (j == i + 1 && startsLayoutPair(i)) {
         sampler.startPixelSample(pixel, index, i);
         return sampler.get2D();
     }
-    if (i == j + 1 && (isLayoutPair(j) || j == dims::kPixel)) {
+    if (i == j + 1 && (startsLayoutPair(j) || j == dims::kPixel)) {
         const Vec2f swapped = sampleDimensions(sampler, pixel, index, j, i);
         return {swapped.y, swapped.x};
     }

@@ -1,6 +1,6 @@
-// Option values CLI11 cannot be trusted to read: it clamps an out-of-range
-// unsigned integer ("-1", "99999999999999999999") to the largest value without
-// a word, so such options are read as text and converted here.
+// Seeds as text: CLI11 clamps an out-of-range unsigned integer ("-1",
+// "99999999999999999999") to the largest value without a word, so the command
+// line and the Python module read a seed as text and convert it here.
 #pragma once
 
 #include <charconv>
@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 
-namespace pathlab::cli {
+namespace pathlab {
 
 // A seed: a decimal integer from 0 to 2^64−1, nothing else.
 inline uint64_t parseSeed(const std::string& text, const std::string& option = "--seed") {
@@ -22,4 +22,4 @@ inline uint64_t parseSeed(const std::string& text, const std::string& option = "
     return v;
 }
 
-}  // namespace pathlab::cli
+}  // namespace pathlab

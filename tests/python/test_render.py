@@ -1,0 +1,160 @@
+"""pathlab.render against `pathlab render`: the same image bit for bit, the
+same refusals, one load for many renders, Ctrl-C and threads."""
+
+import _thread
+import pathlib
+import threading
+
+import numpy as np
+import pytest
+
+import pathlab
+from conftest import cli_error
+
+SETTINGS = dict(sampler="sobol-owen", spp=4, seed=3, size=(40, 24), max_depth=5)
+
+
+def cli_render(cli, tmp_path, scene="cornell-box", extra=()):
+    out = tmp_path / "cli.exr"
+    cli("render", "--scene", scene, "--sampler", "sobol-owen", "--spp", 4, "--seed", 3,
+        "--size", "40x24", "--max-depth", 5, *extra, "-o", out)
+    return pathlab.read_image(out)
+
+
+def same_bits(a, b):
+    return a.shape == b.shape and np.array_equal(a.view(np.uint32), b.view(np.uint32))
+
+
+def test_render_equals_the_cli_exr_bit_for_bit(cli, tmp_path):
+    image = pathlab.render("cornell-box", **SETTINGS)
+    assert image.dtype == np.float32 and image.shape == (24, 40, 3)
+    assert image.max() > 0
+    assert same_bits(image, cli_render(cli, tmp_path))
+
+
+def test_render_options_reach_the_renderer(cli, tmp_path):
+    extra = ("--no-russian-roulette", "--roulette-depth", 3)
+    image = pathlab.render("cornell-box", russian_roulette=False, roulette_depth=3, **SETTINGS)
+    assert same_bits(image, cli_render(cli, tmp_path, extra=extra))
+    assert not same_bits(image, pathlab.render("cornell-box", **SETTINGS))
+
+
+def test_a_loaded_scene_renders_the_same_as_its_name():
+    scene = pathlab.load_scene("cornell-box")
+    assert (scene.width, scene.height) == (512, 512)
+    first = pathlab.render(scene, **SETTINGS)
+    assert same_bits(first, pathlab.render(scene, **SETTINGS))
+    assert same_bits(first, pathlab.render("cornell-box", **SETTINGS))
+    other_seed = dict(SETTINGS, seed=4)
+    assert not same_bits(first, pathlab.render(scene, **other_seed))
+
+
+@pytest.mark.parametrize("keyword,value,flag,text", [
+    ("spp", 0, "--spp", "0"),
+    ("spp", 10 ** 20, "--spp", "99999999999999999999"),
+    ("max_depth", 2000, "--max-depth", "2000"),
+    ("size", (0, 5), "--size", "0x5"),
+    ("seed", -1, "--seed", "-1"),
+    ("sampler", "no-such-sampler", "--sampler", "no-such-sampler"),
+])
+def test_bad_arguments_raise_the_cli_message_naming_the_argument(cli, tmp_path, keyword, value,
+                                                                 flag, text):
+    settings = dict(SETTINGS, **{keyword: value})
+    with pytest.raises(ValueError) as error:
+        pathlab.render("cornell-box", **settings)
+    result = cli("render", "--scene", "cornell-box", flag, text, "-o", tmp_path / "x.exr",
+                 check=False)
+    expected = cli_error(result)
+    # The CLI names its flag, Python its keyword; the message is the same.
+    if flag != "--sampler":
+        assert expected.startswith(flag)
+        expected = keyword + expected[len(flag):]
+    assert str(error.value) == expected
+
+
+def test_a_missing_scene_file_raises_the_cli_message(cli, tmp_path):
+    missing = str(tmp_path / "missing.json")
+    with pytest.raises(ValueError) as error:
+        pathlab.load_scene(missing)
+    result = cli("render", "--scene", missing, "-o", tmp_path / "x.exr", check=False)
+    assert str(error.value) == cli_error(result)
+
+
+def test_progress_reports_tiles_and_its_exception_stops_the_render():
+    calls = []
+    pathlab.render("cornell-box", progress=lambda done, total: calls.append((done, total)),
+                   **SETTINGS)
+    assert calls and calls[-1] == (6, 6)  # 40×24 in 16×16 tiles
+
+    def refuse(done, total):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        pathlab.render("cornell-box", progress=refuse, **SETTINGS)
+
+
+def test_ctrl_c_interrupts_a_render_before_it_ends():
+    scene = pathlab.load_scene("cornell-box")
+    calls = []
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            # 1024 tiles of a fraction of a second, a minute or more in all:
+            # only an interrupted render returns before its last tile.
+            pathlab.render(scene, sampler="independent", spp=512,
+                           progress=lambda done, total: calls.append((done, total)),
+                           progress_interval=0.02)
+    finally:
+        timer.cancel()
+    assert calls, "the progress callback never ran"
+    # Never the report of a finished render (32×32 tiles); under load the
+    # interrupt may even come before the first tile (total still 0).
+    assert all(done < 1024 for done, _ in calls)
+
+
+def test_two_python_threads_render_at_once_deterministically():
+    scene = pathlab.load_scene("cornell-box")
+    expected = pathlab.render(scene, **SETTINGS)
+    results = {}
+
+    def work(name, threads):
+        results[name] = [pathlab.render(scene, threads=threads, **SETTINGS) for _ in range(3)]
+
+    workers = [threading.Thread(target=work, args=(n, t)) for n, t in (("a", 1), ("b", 3))]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join()
+    for images in results.values():
+        assert len(images) == 3
+        assert all(same_bits(expected, image) for image in images)
+
+
+def test_render_progressive_yields_the_render_at_each_count():
+    scene = pathlab.load_scene("cornell-box")
+    settings = dict(SETTINGS)
+    del settings["spp"]
+    steps = pathlab.render_progressive(scene, spp=5, step=2, **settings)
+    assert len(steps) == 3
+    seen = []
+    for spp, image in steps:
+        seen.append(spp)
+        assert same_bits(image, pathlab.render(scene, spp=spp, **settings))
+    assert seen == [2, 4, 5]
+
+
+def test_return_stats_counts_the_paths():
+    image, stats = pathlab.render("cornell-box", return_stats=True, **SETTINGS)
+    assert stats["paths"] == 40 * 24 * 4
+    assert stats["sampler"] == "sobol-owen" and stats["seed"] == 3
+    assert stats["variance"].shape == image.shape
+
+
+def test_a_pbrt_files_sampler_and_depth_apply_where_the_call_is_silent(cli, tmp_path):
+    source = pathlib.Path(__file__).resolve().parents[2] / "scenes" / "pbrt" / "instances.pbrt"
+    scene = pathlab.load_scene(source)
+    assert scene.defaults["sampler"] == "zsobol" and scene.defaults["max_depth"] == 5
+    out = tmp_path / "cli.exr"
+    cli("render", "--scene", source, "--size", "24x16", "--spp", 2, "-o", out)
+    assert same_bits(pathlab.render(scene, size=(24, 16), spp=2), pathlab.read_image(out))
