@@ -309,7 +309,7 @@ TEST(JsonScene, DocumentedExampleLoads) {
     writeImage((dir.path() / "fur.png").string(), fur);
     const SceneDescription s = loadScene(dir.write("example.json", example));
     EXPECT_EQ(s.name, "example");
-    EXPECT_EQ(s.materials.size(), 7u);  // six named and the lights' black one
+    EXPECT_EQ(s.materials.size(), 13u);  // twelve named and the lights' black one
     EXPECT_EQ(s.spheres.size(), 1u);
 }
 
