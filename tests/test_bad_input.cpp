@@ -99,6 +99,13 @@ const BadInput kCases[] = {
      "{dir}/bad-index.pbrt:2:1: trianglemesh: index 7 (entry 2) is out of range (3 vertices)"},
     {"pbrt: undefined named material", "render --scene {dir}/no-material.pbrt -o {dir}/out.png",
      "out.png", "{dir}/no-material.pbrt:2:1: NamedMaterial: no material named 'gold'"},
+    {"pbrt: mix of a material not yet defined",
+     "render --scene {dir}/mix-undefined.pbrt -o {dir}/out.png", "out.png",
+     "{dir}/mix-undefined.pbrt:2:1: mix: no material named 'gold' defined before it"},
+    {"pbrt: named material defined twice", "render --scene {dir}/redefined.pbrt -o {dir}/out.png",
+     "out.png", "{dir}/redefined.pbrt:3:1: MakeNamedMaterial: material 'm' is already defined"},
+    {"mix material containing itself", "render --scene {dir}/mix-cycle.json -o {dir}/out.png",
+     "out.png", "{dir}/mix-cycle.json: materials: mix material 'a' contains itself"},
     {"pbrt: undefined object", "render --scene {dir}/no-object.pbrt -o {dir}/out.png", "out.png",
      "{dir}/no-object.pbrt:2:1: ObjectInstance: no object named 'tree'"},
     {"pbrt: undefined coordinate system", "render --scene {dir}/no-coordsys.pbrt -o {dir}/out.png",
@@ -295,6 +302,16 @@ class BadInputTable : public ::testing::Test {
             "WorldBegin\nShape \"plymesh\" \"string filename\" \"truncated.ply\"\n");
         put("bad-index.pbrt", "WorldBegin\n" + tri + " \"integer indices\" [0 1 7]\n");
         put("no-material.pbrt", "WorldBegin\nNamedMaterial \"gold\"\n" + tri + "\n");
+        put("mix-undefined.pbrt",
+            "WorldBegin\nMaterial \"mix\" \"string materials\" [\"gold\" \"red\"]\n" + tri + "\n");
+        put("redefined.pbrt",
+            "WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"diffuse\"\n"
+            "MakeNamedMaterial \"m\" \"string type\" \"diffuse\"\n" +
+                tri + "\n");
+        put("mix-cycle.json",
+            sceneWith(R"(, "materials": {"a": {"type": "mix", "materials": ["b", "c"]},
+                                          "b": {"type": "mix", "materials": ["a", "c"]},
+                                          "c": {"type": "diffuse"}})"));
         put("no-object.pbrt", "WorldBegin\nObjectInstance \"tree\"\n");
         put("no-coordsys.pbrt", "WorldBegin\nCoordSysTransform \"lamp\"\n");
         put("unbalanced.pbrt", "WorldBegin\nAttributeEnd\n");

@@ -1,6 +1,7 @@
 #include "render/bsdf.h"
 
 #include "render/sampling_routines.h"
+#include "render/transmission_lobes.h"
 
 namespace pathlab {
 namespace {
@@ -60,41 +61,6 @@ bool refract(Vec3f wi, Vec3f n, float eta, float* etaRelative, Vec3f* wt) {
     return true;
 }
 
-float GgxDistribution::D(Vec3f wm) const {
-    const float cos2 = wm.z * wm.z;
-    if (cos2 <= 0) return 0;
-    const float tan2 = (1 - cos2) / cos2;
-    const float e = 1 + tan2 / (alpha * alpha);
-    return 1 / (kPi * alpha * alpha * cos2 * cos2 * e * e);
-}
-
-float GgxDistribution::lambda(Vec3f w) const {
-    const float cos2 = w.z * w.z;
-    if (cos2 <= 0) return 0;
-    const float tan2 = (1 - cos2) / cos2;
-    return (std::sqrt(1 + alpha * alpha * tan2) - 1) / 2;
-}
-
-float GgxDistribution::visibleD(Vec3f wo, Vec3f wm) const {
-    return G1(wo) / absCosTheta(wo) * D(wm) * std::abs(dot(wo, wm));
-}
-
-Vec3f GgxDistribution::sampleVisibleNormal(Vec3f wo, Vec2f u) const {
-    // Stretch to the unit-roughness configuration (Heitz 2018, sec. 4).
-    Vec3f wh = normalize(Vec3f(alpha * wo.x, alpha * wo.y, wo.z));
-    if (wh.z < 0) wh = -wh;
-    const Vec3f t1 = wh.z < 0.99999f ? normalize(cross(Vec3f(0, 0, 1), wh)) : Vec3f(1, 0, 0);
-    const Vec3f t2 = cross(wh, t1);
-    // A point on the projected hemisphere: a disk whose lower half is squashed.
-    const float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
-    float px = r * std::cos(phi), py = r * std::sin(phi);
-    const float h = std::sqrt(1 - px * px);
-    py = (1 - (1 + wh.z) / 2) * h + ((1 + wh.z) / 2) * py;
-    const float pz = std::sqrt(std::max(0.0f, 1 - px * px - py * py));
-    const Vec3f nh = t1 * px + t2 * py + wh * pz;
-    return normalize(Vec3f(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
-}
-
 Bsdf Bsdf::diffuse(Vec3f albedo) {
     Bsdf b;
     b.kind_ = BsdfKind::Diffuse;
@@ -104,52 +70,80 @@ Bsdf Bsdf::diffuse(Vec3f albedo) {
 Bsdf Bsdf::mirror(Vec3f reflectance) {
     Bsdf b;
     b.kind_ = BsdfKind::Mirror;
+    b.specular_ = true;
     b.color_ = reflectance;
     return b;
 }
-Bsdf Bsdf::dielectric(float eta) {
+Bsdf Bsdf::dielectric(float eta, float alphaX, float alphaY) {
     Bsdf b;
     b.kind_ = BsdfKind::Dielectric;
     b.eta_ = Vec3f(eta);
+    b.alpha_ = alphaX, b.alphaY_ = alphaY;
+    // An index-matched interface refracts nothing: smooth whatever its
+    // roughness (as pbrt-v4's DielectricBxDF).
+    b.specular_ = eta == 1 || b.ggx().effectivelySmooth();
     return b;
 }
-Bsdf Bsdf::conductor(Vec3f eta, Vec3f k, float alpha) {
+Bsdf Bsdf::conductor(Vec3f eta, Vec3f k, float alphaX, float alphaY) {
     Bsdf b;
     b.kind_ = BsdfKind::Conductor;
     b.eta_ = eta;
     b.k_ = k;
-    b.alpha_ = alpha;
+    b.alpha_ = alphaX, b.alphaY_ = alphaY;
+    b.specular_ = b.ggx().effectivelySmooth();
+    return b;
+}
+Bsdf Bsdf::thinDielectric(float eta) {
+    Bsdf b;
+    b.kind_ = BsdfKind::ThinDielectric;
+    b.eta_ = Vec3f(eta);
+    b.specular_ = true;
+    return b;
+}
+Bsdf Bsdf::diffuseTransmission(Vec3f reflectance, Vec3f transmittance) {
+    Bsdf b;
+    b.kind_ = BsdfKind::DiffuseTransmission;
+    b.color_ = reflectance;
+    b.k_ = transmittance;
+    return b;
+}
+Bsdf Bsdf::passThrough() {
+    Bsdf b;
+    b.kind_ = BsdfKind::PassThrough;
+    b.specular_ = true;
     return b;
 }
 
 Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {
     if (isSpecular()) return Vec3f(0.0f);
+    if (kind_ == BsdfKind::Dielectric) return roughDielectricF(ggx(), eta_.x, wo, wi);
+    if (kind_ == BsdfKind::DiffuseTransmission) return diffuseTransmissionF(color_, k_, wo, wi);
     flipToUpper(wo, wi);
     if (wi.z <= 0 || wo.z <= 0) return Vec3f(0.0f);
     // Conductor: Torrance–Sparrow with GGX (pbrt-v4 eq. 9.33).
     Vec3f wm = wi + wo;
     if (dot(wm, wm) == 0) return Vec3f(0.0f);
     wm = normalize(wm);
-    const GgxDistribution ggx{alpha_};
+    const GgxDistribution ggx = this->ggx();
     const Vec3f F = conductorFresnel(std::abs(dot(wo, wm)), eta_, k_);
     return F * (ggx.D(wm) * ggx.G(wo, wi) / (4 * wi.z * wo.z));
 }
 
 float Bsdf::pdfNonDiffuse(Vec3f wo, Vec3f wi) const {
     if (isSpecular()) return 0;
+    if (kind_ == BsdfKind::Dielectric) return roughDielectricPdf(ggx(), eta_.x, wo, wi);
+    if (kind_ == BsdfKind::DiffuseTransmission) return diffuseTransmissionPdf(color_, k_, wo, wi);
     flipToUpper(wo, wi);
     if (wi.z <= 0 || wo.z <= 0) return 0;
     Vec3f wm = wi + wo;
     if (dot(wm, wm) == 0) return 0;
     wm = normalize(wm);
-    const GgxDistribution ggx{alpha_};
     // Change of variables from half vector to reflected direction (eq. 9.34).
-    return ggx.visibleD(wo, wm) / (4 * std::abs(dot(wo, wm)));
+    return ggx().visibleD(wo, wm) / (4 * std::abs(dot(wo, wm)));
 }
 
 std::optional<BsdfSample> Bsdf::sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u) const {
     if (wo.z == 0) return std::nullopt;
-    const float side = wo.z < 0 ? -1.0f : 1.0f;
     switch (kind_) {
         case BsdfKind::Diffuse:
             break;  // inline in bsdf.h
@@ -157,38 +151,38 @@ std::optional<BsdfSample> Bsdf::sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u)
             const Vec3f wi{-wo.x, -wo.y, wo.z};
             return BsdfSample{wi, color_ / absCosTheta(wi), 1.0f, true};
         }
-        case BsdfKind::Dielectric: {
-            const float R = fresnelDielectric(wo.z, eta_.x), T = 1 - R;
-            if (uLobe < R) {
-                const Vec3f wi{-wo.x, -wo.y, wo.z};
-                return BsdfSample{wi, Vec3f(R / absCosTheta(wi)), R, true};
-            }
-            Vec3f wi;
-            float etap;
-            if (!refract(wo, Vec3f(0, 0, 1), eta_.x, &etap, &wi)) return std::nullopt;
-            // Radiance is compressed by 1/η² entering a denser medium (pbrt-v4 sec. 9.5.2,
-            // "non-symmetric scattering due to refraction").
-            return BsdfSample{wi, Vec3f(T / absCosTheta(wi) / (etap * etap)), T, true};
-        }
-        case BsdfKind::Conductor: {
-            if (isSpecular()) {
-                const Vec3f wi{-wo.x, -wo.y, wo.z};
-                const Vec3f F = conductorFresnel(absCosTheta(wo), eta_, k_);
-                return BsdfSample{wi, F / absCosTheta(wi), 1.0f, true};
-            }
-            const Vec3f woUp = wo * side;
-            const GgxDistribution ggx{alpha_};
-            const Vec3f wm = ggx.sampleVisibleNormal(woUp, u);
-            Vec3f wi = reflect(woUp, wm);
-            if (wi.z <= 0) return std::nullopt;
-            const float pdf = ggx.visibleD(woUp, wm) / (4 * std::abs(dot(woUp, wm)));
-            const Vec3f F = conductorFresnel(std::abs(dot(woUp, wm)), eta_, k_);
-            const Vec3f f = F * (ggx.D(wm) * ggx.G(woUp, wi) / (4 * wi.z * woUp.z));
-            if (pdf <= 0) return std::nullopt;
-            return BsdfSample{wi * side, f, pdf, false};
-        }
+        case BsdfKind::Dielectric:
+            if (isSpecular()) return sampleSmoothDielectric(eta_.x, wo, uLobe);
+            return sampleRoughDielectric(ggx(), eta_.x, wo, uLobe, u);
+        case BsdfKind::Conductor:
+            return sampleConductor(wo, u);
+        case BsdfKind::ThinDielectric:
+            return sampleThinDielectric(eta_.x, wo, uLobe);
+        case BsdfKind::DiffuseTransmission:
+            return sampleDiffuseTransmission(color_, k_, wo, uLobe, u);
+        case BsdfKind::PassThrough:
+            return BsdfSample{-wo, Vec3f(1 / absCosTheta(wo)), 1.0f, true};
     }
     return std::nullopt;
+}
+
+std::optional<BsdfSample> Bsdf::sampleConductor(Vec3f wo, Vec2f u) const {
+    if (isSpecular()) {
+        const Vec3f wi{-wo.x, -wo.y, wo.z};
+        const Vec3f F = conductorFresnel(absCosTheta(wo), eta_, k_);
+        return BsdfSample{wi, F / absCosTheta(wi), 1.0f, true};
+    }
+    const float side = wo.z < 0 ? -1.0f : 1.0f;
+    const Vec3f woUp = wo * side;
+    const GgxDistribution ggx = this->ggx();
+    const Vec3f wm = ggx.sampleVisibleNormal(woUp, u);
+    Vec3f wi = reflect(woUp, wm);
+    if (wi.z <= 0) return std::nullopt;
+    const float pdf = ggx.visibleD(woUp, wm) / (4 * std::abs(dot(woUp, wm)));
+    const Vec3f F = conductorFresnel(std::abs(dot(woUp, wm)), eta_, k_);
+    const Vec3f f = F * (ggx.D(wm) * ggx.G(woUp, wi) / (4 * wi.z * woUp.z));
+    if (pdf <= 0) return std::nullopt;
+    return BsdfSample{wi * side, f, pdf, false};
 }
 
 }  // namespace pathlab

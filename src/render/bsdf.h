@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/math.h"
+#include "render/microfacet.h"
 #include "render/sampling_routines.h"
 
 namespace pathlab {
@@ -20,14 +21,32 @@ struct BsdfSample {
     Vec3f weight() const { return f * (absCosTheta(wi) / pdf); }
 };
 
-enum class BsdfKind { Diffuse, Mirror, Dielectric, Conductor };
+// PassThrough is pbrt-v4's "interface" material: no surface, the ray goes on
+// unchanged (a specular transmission with weight 1).
+enum class BsdfKind {
+    Diffuse,
+    Mirror,
+    Dielectric,
+    Conductor,
+    ThinDielectric,
+    DiffuseTransmission,
+    PassThrough
+};
 
 class Bsdf {
   public:
     static Bsdf diffuse(Vec3f albedo);
     static Bsdf mirror(Vec3f reflectance);
-    static Bsdf dielectric(float eta);
-    static Bsdf conductor(Vec3f eta, Vec3f k, float alpha);
+    // alphaX/alphaY: GGX roughness along the shading frame's x and y axes;
+    // below GgxDistribution::kSmoothAlpha the interface is smooth (a delta).
+    static Bsdf dielectric(float eta, float alphaX = 0, float alphaY = 0);
+    static Bsdf conductor(Vec3f eta, Vec3f k, float alpha) {
+        return conductor(eta, k, alpha, alpha);
+    }
+    static Bsdf conductor(Vec3f eta, Vec3f k, float alphaX, float alphaY);
+    static Bsdf thinDielectric(float eta);
+    static Bsdf diffuseTransmission(Vec3f reflectance, Vec3f transmittance);
+    static Bsdf passThrough();
 
     BsdfKind kind() const { return kind_; }
     // A Lambertian BSDF's albedo (its reflectance R: f = R/π).
@@ -35,18 +54,18 @@ class Bsdf {
     // True when every lobe is a Dirac delta: next-event estimation cannot help.
     // Inline: the integrator asks at every vertex, and the diffuse answer is
     // one comparison.
-    bool isSpecular() const {
-        return kind_ != BsdfKind::Diffuse &&
-               (kind_ != BsdfKind::Conductor || alpha_ < kSmoothConductorAlpha);
+    bool isSpecular() const { return specular_; }
+    // Which of sample()'s random numbers it reads: the lobe choice only where
+    // there are two lobes (reflection and transmission), the direction only
+    // where some lobe is not a delta. The integrator draws no others.
+    bool usesLobeSample() const {
+        return kind_ == BsdfKind::Dielectric || kind_ == BsdfKind::ThinDielectric ||
+               kind_ == BsdfKind::DiffuseTransmission;
     }
-    // Below this roughness a conductor's GGX lobe is numerically a delta: it
-    // is treated as a perfect mirror.
-    static constexpr float kSmoothConductorAlpha = 1e-3f;
-    // Which of sample()'s random numbers it reads: the lobe choice only at
-    // glass, the direction only where some lobe is not a delta. The integrator
-    // draws no others.
-    bool usesLobeSample() const { return kind_ == BsdfKind::Dielectric; }
     bool usesDirectionSample() const { return !isSpecular(); }
+    // Roughness differs along the frame's x and y: the frame's orientation
+    // about the normal matters (shadingFrame).
+    bool isAnisotropic() const { return alpha_ != alphaY_; }
 
     // The Lambertian case, nearly every vertex of the built-in scenes, is
     // inline so that it is optimised with the integrator around it; the other
@@ -61,11 +80,15 @@ class Bsdf {
     Vec3f fNonDiffuse(Vec3f wo, Vec3f wi) const;
     float pdfNonDiffuse(Vec3f wo, Vec3f wi) const;
     std::optional<BsdfSample> sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u) const;
+    std::optional<BsdfSample> sampleConductor(Vec3f wo, Vec2f u) const;
+
+    GgxDistribution ggx() const { return GgxDistribution(alpha_, alphaY_); }
 
     BsdfKind kind_ = BsdfKind::Diffuse;
+    bool specular_ = false;
     Vec3f color_{0.0f};       // albedo / reflectance
-    Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index
-    float alpha_ = 0;
+    Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index; k_: diffuse transmittance
+    float alpha_ = 0, alphaY_ = 0;
 };
 
 // Lambertian reflection is two-sided: it scatters into the hemisphere wo lies
@@ -96,6 +119,23 @@ inline std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) co
     return BsdfSample{wi, color_ * kInvPi, cosineHemispherePdf(std::abs(wi.z)), false};
 }
 
+// The local frame a BSDF is evaluated in. Isotropic BSDFs do not depend on
+// the tangent's direction and take Frame's own. An anisotropic one takes as
+// x axis the tangent of the circle of latitude about world z,
+// normalize((0, 0, 1) × n): pbrt-v4's ∂p/∂u on an unrotated sphere (its
+// roughness u runs along ∂p/∂u). Where n is parallel to z, Frame's own.
+inline Frame shadingFrame(const Bsdf& bsdf, Vec3f n) {
+    if (!bsdf.isAnisotropic()) return Frame(n);
+    const Vec3f t{-n.y, n.x, 0};
+    const float len2 = dot(t, t);
+    if (!(len2 > 1e-12f)) return Frame(n);
+    Frame f;
+    f.n = n;
+    f.s = t / std::sqrt(len2);
+    f.t = cross(n, f.s);
+    return f;
+}
+
 // Unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 eq. 9.6);
 // eta = n_inside / n_outside, cosThetaI signed (negative: arriving from inside).
 float fresnelDielectric(float cosThetaI, float eta);
@@ -104,19 +144,5 @@ float fresnelComplex(float cosThetaI, float eta, float k);
 // Refraction of wi about n; false on total internal reflection. etaRelative
 // receives the relative index along wi's side.
 bool refract(Vec3f wi, Vec3f n, float eta, float* etaRelative, Vec3f* wt);
-
-// Trowbridge–Reitz (GGX) microfacet distribution, isotropic (Walter et al.
-// 2007; visible-normal sampling by Heitz 2018, "Sampling the GGX Distribution of
-// Visible Normals").
-struct GgxDistribution {
-    float alpha;
-    float D(Vec3f wm) const;
-    float lambda(Vec3f w) const;
-    float G1(Vec3f w) const { return 1 / (1 + lambda(w)); }
-    float G(Vec3f wo, Vec3f wi) const { return 1 / (1 + lambda(wo) + lambda(wi)); }
-    // Density of visible normals as seen from wo (Heitz 2018 eq. 3).
-    float visibleD(Vec3f wo, Vec3f wm) const;
-    Vec3f sampleVisibleNormal(Vec3f wo, Vec2f u) const;
-};
 
 }  // namespace pathlab

@@ -178,8 +178,8 @@ template <Sampler S>
 VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
                           const SurfaceInteraction& si, Vec3f dir) {
     const LightSet& lights = scene.lights();
-    const Bsdf bsdf = scene.bsdfAt(si);
-    const Frame frame(si.ns);
+    const Bsdf bsdf = scene.bsdfAt(si, dir);
+    const Frame frame = shadingFrame(bsdf, si.ns);
     const Vec3f wo = frame.toLocal(-dir);
     VertexShading v;
     if (!bsdf.isSpecular()) {
@@ -349,7 +349,7 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
     DiffuseBatchOutput& out = paths.out;
     for (int j = 0; j < lambertian; ++j) {
         const int k = lane[j];
-        setBatchLane(in, j, si[k], paths.dir[k], scene.bsdfAt(si[k]).albedo(), uLight[j],
+        setBatchLane(in, j, si[k], paths.dir[k], scene.lambertianAlbedoAt(si[k]), uLight[j],
                      uDirection[j]);
         if (!onlyLight)
             setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));

@@ -1,9 +1,11 @@
 #include "render/render_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
+#include "core/hash.h"
 #include "render/sphere_hit.h"
 #include "scene/mesh_utils.h"
 
@@ -38,6 +40,26 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
         lambertian_.push_back(m.type == MaterialType::Diffuse);
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
     setupInstances();
+}
+
+int RenderScene::mixComponent(int material, Vec3f p, Vec3f dir) const {
+    // Loaders reject cyclic mixes, so this ends.
+    while (desc_.materials[size_t(material)].type == MaterialType::Mix) {
+        const Material& m = desc_.materials[size_t(material)];
+        if (m.amount <= 0) {
+            material = m.mix[0];
+        } else if (m.amount >= 1) {
+            material = m.mix[1];
+        } else {
+            const uint64_t h = hashValues(
+                std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y),
+                std::bit_cast<uint32_t>(p.z), std::bit_cast<uint32_t>(dir.x),
+                std::bit_cast<uint32_t>(dir.y), std::bit_cast<uint32_t>(dir.z), uint32_t(material));
+            const float u = float(h >> 40) * 0x1p-24f;  // in [0, 1)
+            material = m.amount < u ? m.mix[0] : m.mix[1];
+        }
+    }
+    return material;
 }
 
 std::vector<Vec3f> faceNormals(const Mesh& mesh) {

@@ -60,7 +60,16 @@ class RenderScene {
         const Vec3f offset = si.ng * epsilon_;
         return dot(w, si.ng) > 0 ? si.p + offset : si.p - offset;
     }
-    Bsdf bsdfAt(const SurfaceInteraction& si) const;
+    // The BSDF at si for a ray arriving along dir (a mix material chooses
+    // its component from both; see mixComponent).
+    Bsdf bsdfAt(const SurfaceInteraction& si, Vec3f dir) const;
+    // Which material a mix material stands for at point p seen along dir:
+    // pbrt-v4's MixMaterial::ChooseMaterial, a hash of the point, the
+    // direction and the material, so the choice is deterministic per shading
+    // point and draws nothing from the sampler. Follows nested mixes.
+    int mixComponent(int material, Vec3f p, Vec3f dir) const;
+    // bsdfAt's albedo where isLambertian(si.material).
+    Vec3f lambertianAlbedoAt(const SurfaceInteraction& si) const;
     // The ray-origin offset of offsetOrigin.
     float epsilon() const { return epsilon_; }
     // Whether surfaces of material m are Lambertian, which the batched
@@ -120,20 +129,39 @@ class RenderScene {
 // Inline: at every vertex; the texture coordinates are read only for a
 // textured material (an out-of-line call took them by value, reloading them
 // from the stored interaction).
-inline Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si) const {
+inline float roughnessV(const Material& m) {
+    return m.roughnessV >= 0 ? m.roughnessV : m.roughness;
+}
+
+inline Vec3f RenderScene::lambertianAlbedoAt(const SurfaceInteraction& si) const {
     const Material& m = desc_.materials[size_t(si.material)];
-    switch (m.type) {
+    return m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv) : m.albedo;
+}
+
+inline Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si, Vec3f dir) const {
+    const Material* m = &desc_.materials[size_t(si.material)];
+    if (m->type == MaterialType::Mix)
+        m = &desc_.materials[size_t(mixComponent(si.material, si.p, dir))];
+    switch (m->type) {
         case MaterialType::Diffuse:
-            return Bsdf::diffuse(m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv)
-                                                : m.albedo);
+            return Bsdf::diffuse(m->texture >= 0 ? desc_.textures[size_t(m->texture)].lookup(si.uv)
+                                                 : m->albedo);
         case MaterialType::Mirror:
-            return Bsdf::mirror(m.albedo);
+            return Bsdf::mirror(m->albedo);
         case MaterialType::Dielectric:
-            return Bsdf::dielectric(m.ior);
+            return Bsdf::dielectric(m->ior, m->roughness, roughnessV(*m));
         case MaterialType::Conductor:
-            return Bsdf::conductor(m.eta, m.k, m.roughness);
+            return Bsdf::conductor(m->eta, m->k, m->roughness, roughnessV(*m));
+        case MaterialType::ThinDielectric:
+            return Bsdf::thinDielectric(m->ior);
+        case MaterialType::DiffuseTransmission:
+            return Bsdf::diffuseTransmission(m->albedo, m->transmittance);
+        case MaterialType::Interface:
+            return Bsdf::passThrough();
+        case MaterialType::Mix:
+            break;  // resolved above
     }
-    return Bsdf::diffuse(m.albedo);
+    return Bsdf::diffuse(m->albedo);
 }
 
 }  // namespace pathlab

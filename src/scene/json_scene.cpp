@@ -153,6 +153,12 @@ struct Builder {
     SceneDescription scene;
     std::map<std::string, int> materialIndex;
     std::map<std::string, int> textureIndex;  // by path, loaded once
+    // The component names of the mix material parsed last, with their slot.
+    struct MixPart {
+        Node name;
+        int slot;
+    };
+    std::vector<MixPart> mixParts;
 
     int material(const Node& n) {
         const std::string name = n.string();
@@ -174,6 +180,16 @@ constexpr Metal kMetals[] = {
     {"copper", {0.200f, 0.924f, 1.102f}, {3.912f, 2.452f, 2.142f}},
     {"aluminium", {1.657f, 0.880f, 0.521f}, {9.224f, 6.270f, 4.837f}},
 };
+
+// GGX alpha: "roughness", and "roughnessV" along v when anisotropic.
+void parseRoughness(const Node& n, Material& m) {
+    for (const char* key : {"roughness", "roughnessV"}) {
+        if (!n.has(key)) continue;
+        const float r = n[key].number();
+        if (r < 0) n[key].fail("must not be negative");
+        (key[9] == 'V' ? m.roughnessV : m.roughness) = r;
+    }
+}
 
 Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
     Material m;
@@ -205,13 +221,42 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
         n.keys({"type", "albedo"});
         m.type = MaterialType::Mirror;
         m.albedo = n.has("albedo") ? n["albedo"].colour() : Vec3f(1.0f);
-    } else if (type == "dielectric") {
-        n.keys({"type", "ior"});
-        m.type = MaterialType::Dielectric;
+    } else if (type == "dielectric" || type == "thindielectric") {
+        if (type == "dielectric")
+            n.keys({"type", "ior", "roughness", "roughnessV"});
+        else
+            n.keys({"type", "ior"});
+        m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
         m.albedo = Vec3f(1.0f);
+        m.roughness = 0;
         if (n.has("ior")) m.ior = n["ior"].positive();
+        parseRoughness(n, m);
+    } else if (type == "diffusetransmission") {
+        n.keys({"type", "reflectance", "transmittance"});
+        m.type = MaterialType::DiffuseTransmission;
+        const auto fraction = [&](const char* key) {
+            const Vec3f c = n[key].colour();
+            if (maxComponent(c) > 1) n[key].fail("must be at most 1");
+            return c;
+        };
+        if (n.has("reflectance"))
+            m.albedo = fraction("reflectance");
+        else
+            m.albedo = Vec3f(0.25f);
+        if (n.has("transmittance")) m.transmittance = fraction("transmittance");
+    } else if (type == "mix") {
+        n.keys({"type", "materials", "amount"});
+        m.type = MaterialType::Mix;
+        const Node parts = n["materials"];
+        if (parts.size() != 2) parts.fail("expected two material names");
+        // Resolved when every material is known (resolveMixes).
+        for (int i = 0; i < 2; ++i) b.mixParts.push_back({parts.at(size_t(i)), i});
+        if (n.has("amount")) m.amount = n["amount"].number();
+    } else if (type == "interface") {
+        n.keys({"type"});
+        m.type = MaterialType::Interface;
     } else if (type == "conductor") {
-        n.keys({"type", "metal", "eta", "k", "roughness"});
+        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV"});
         m.type = MaterialType::Conductor;
         if (n.has("metal")) {
             if (n.has("eta") || n.has("k"))
@@ -227,13 +272,11 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
             m.eta = n["eta"].colour();
             m.k = n["k"].colour();
         }
-        if (n.has("roughness")) {
-            m.roughness = n["roughness"].number();
-            if (m.roughness < 0) n["roughness"].fail("must not be negative");
-        }
+        parseRoughness(n, m);
     } else {
         n["type"].fail("unknown material type '" + type +
-                       "' (diffuse, mirror, dielectric, conductor)");
+                       "' (diffuse, mirror, dielectric, conductor, thindielectric, "
+                       "diffusetransmission, mix, interface)");
     }
     return m;
 }
@@ -524,6 +567,25 @@ Json parseText(const std::string& text, const std::string& source) {
 
 }  // namespace
 
+// A mix material that contains itself (directly or through other mixes)
+// chooses forever.
+void rejectCyclicMixes(const std::vector<Material>& mats, const Node& where) {
+    for (size_t i = 0; i < mats.size(); ++i) {
+        if (mats[i].type != MaterialType::Mix) continue;
+        std::vector<char> seen(mats.size(), 0);
+        std::vector<int> stack{mats[i].mix[0], mats[i].mix[1]};
+        while (!stack.empty()) {
+            const int c = stack.back();
+            stack.pop_back();
+            if (c == int(i)) where.fail("mix material '" + mats[i].name + "' contains itself");
+            if (seen[size_t(c)] || mats[size_t(c)].type != MaterialType::Mix) continue;
+            seen[size_t(c)] = 1;
+            stack.push_back(mats[size_t(c)].mix[0]);
+            stack.push_back(mats[size_t(c)].mix[1]);
+        }
+    }
+}
+
 SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir,
                                 const std::string& source) {
     const Json j = parseText(text, source);
@@ -557,13 +619,24 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     if (root.has("environmentMap")) parseEnvironmentMap(root["environmentMap"], b);
 
     if (root.has("materials")) {
+        struct MixName {
+            int material, slot;
+            Node name;
+        };
+        std::vector<MixName> mixNames;
         const Node mats = root["materials"];
         mats.requireObject();
         for (const auto& [name, value] : mats.json().items()) {
             const Node m(value, mats.path() + "." + name, ctx);
             s.materials.push_back(parseMaterial(m, name, b));
             b.materialIndex[name] = int(s.materials.size()) - 1;
+            for (const Builder::MixPart& part : b.mixParts)
+                mixNames.push_back({int(s.materials.size()) - 1, part.slot, part.name});
+            b.mixParts.clear();
         }
+        for (const MixName& x : mixNames)
+            s.materials[size_t(x.material)].mix[x.slot] = b.material(x.name);
+        rejectCyclicMixes(s.materials, mats);
     }
     if (root.has("meshes")) {
         const Node meshes = root["meshes"];
@@ -643,16 +716,38 @@ std::string sceneToJson(const SceneDescription& s) {
                 break;
             case MaterialType::Dielectric:
                 o = {{"type", "dielectric"}, {"ior", shortest(m.ior)}};
+                if (m.roughness > 0) o["roughness"] = shortest(m.roughness);
+                if (m.roughnessV >= 0) o["roughnessV"] = shortest(m.roughnessV);
                 break;
             case MaterialType::Conductor:
                 o = {{"type", "conductor"},
                      {"eta", toJson(m.eta)},
                      {"k", toJson(m.k)},
                      {"roughness", shortest(m.roughness)}};
+                if (m.roughnessV >= 0) o["roughnessV"] = shortest(m.roughnessV);
+                break;
+            case MaterialType::ThinDielectric:
+                o = {{"type", "thindielectric"}, {"ior", shortest(m.ior)}};
+                break;
+            case MaterialType::DiffuseTransmission:
+                o = {{"type", "diffusetransmission"},
+                     {"reflectance", toJson(m.albedo)},
+                     {"transmittance", toJson(m.transmittance)}};
+                break;
+            case MaterialType::Mix:
+                o = {{"type", "mix"}, {"amount", shortest(m.amount)}, {"materials", Json::array()}};
+                break;
+            case MaterialType::Interface:
+                o = {{"type", "interface"}};
                 break;
         }
         mats[name] = o;
     }
+    // Mixes name their parts, whose names are all known now.
+    for (size_t i = 0; i < s.materials.size(); ++i)
+        if (s.materials[i].type == MaterialType::Mix)
+            for (int part : s.materials[i].mix)
+                mats[names[i]]["materials"].push_back(names.at(size_t(part)));
     j["materials"] = mats;
     Json meshes = Json::array();
     for (const Mesh& m : s.meshes) {

@@ -65,6 +65,7 @@ Material convertMaterial(const tinyobj::material_t& m, SceneDescription& scene,
         out.type = MaterialType::Dielectric;
         out.albedo = Vec3f(1.0f);
         out.ior = m.ior > 1 ? float(m.ior) : 1.5f;
+        out.roughness = 0;
     } else if ((illum == 3 || illum == 5 || illum == 8) && m.shininess >= 1000) {
         out.type = MaterialType::Mirror;
         out.albedo = isBlack(ks) ? Vec3f(1.0f) : ks;

@@ -23,10 +23,14 @@ struct Texture {
 };
 
 enum class MaterialType {
-    Diffuse,     // Lambertian; `albedo`, or `texture` when >= 0
-    Mirror,      // ideal specular reflection with reflectance `albedo`
-    Dielectric,  // smooth glass: Fresnel-weighted reflection/refraction, index `ior`
-    Conductor,   // GGX microfacet metal: complex index `eta` + i `k`, GGX `roughness` (alpha)
+    Diffuse,         // Lambertian; `albedo`, or `texture` when >= 0
+    Mirror,          // ideal specular reflection with reflectance `albedo`
+    Dielectric,      // glass of index `ior`: smooth, or GGX rough (`roughness`, `roughnessV`)
+    Conductor,       // GGX microfacet metal: complex index `eta` + i `k`, GGX `roughness` (alpha)
+    ThinDielectric,  // a thin slab of index `ior` (pbrt-v4's thindielectric)
+    DiffuseTransmission,  // Lambertian reflection `albedo` and transmission `transmittance`
+    Mix,                  // `mix[0]` or `mix[1]`, the latter with probability `amount`
+    Interface,            // no surface: rays pass through (pbrt-v4's interface)
 };
 
 struct Material {
@@ -37,7 +41,14 @@ struct Material {
     float ior = 1.5f;
     Vec3f eta{0.2f, 0.92f, 1.1f};  // gold-ish defaults
     Vec3f k{3.9f, 2.45f, 2.14f};
+    // GGX alpha along the surface's u direction (the shading frame's x), and
+    // along v when roughnessV >= 0 (anisotropic); else isotropic. Loaders give
+    // a dielectric 0 (smooth) unless the scene says otherwise.
     float roughness = 0.2f;
+    float roughnessV = -1;
+    Vec3f transmittance{0.25f};
+    int mix[2] = {-1, -1};  // material indices
+    float amount = 0.5f;
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat

@@ -52,7 +52,8 @@ void validateCamera(const Camera& c, const std::string& source) {
         fail(source, "camera fovY must be in (0, 180) degrees, got " + std::to_string(c.fovY));
 }
 
-void validateMaterial(const Material& m, size_t textureCount, const std::string& source) {
+void validateMaterial(const Material& m, size_t textureCount, size_t materialCount,
+                      const std::string& source) {
     const std::string what = "material '" + m.name + "'";
     if (!nonNegativeFinite(m.albedo) || maxComponent(m.albedo) > 1)
         fail(source, what + " has albedo " + str(m.albedo) + " outside [0, 1]");
@@ -61,11 +62,25 @@ void validateMaterial(const Material& m, size_t textureCount, const std::string&
              what + " refers to texture " + std::to_string(m.texture) + " which does not exist");
     if (m.type == MaterialType::Dielectric && !(std::isfinite(m.ior) && m.ior > 0))
         fail(source, what + " has an invalid index of refraction");
+    if (m.type == MaterialType::ThinDielectric && !(std::isfinite(m.ior) && m.ior > 0))
+        fail(source, what + " has an invalid index of refraction");
     if (m.type == MaterialType::Conductor) {
         if (!nonNegativeFinite(m.eta) || !nonNegativeFinite(m.k))
             fail(source, what + " has a negative or non-finite eta or k");
-        if (!(std::isfinite(m.roughness) && m.roughness >= 0))
+    }
+    if (m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric) {
+        if (!(std::isfinite(m.roughness) && m.roughness >= 0) || !std::isfinite(m.roughnessV))
             fail(source, what + " has an invalid roughness");
+    }
+    if (m.type == MaterialType::DiffuseTransmission &&
+        (!nonNegativeFinite(m.transmittance) || maxComponent(m.transmittance) > 1))
+        fail(source, what + " has transmittance " + str(m.transmittance) + " outside [0, 1]");
+    if (m.type == MaterialType::Mix) {
+        for (int c : m.mix)
+            if (c < 0 || size_t(c) >= materialCount)
+                fail(source,
+                     what + " mixes material " + std::to_string(c) + " which does not exist");
+        if (!std::isfinite(m.amount)) fail(source, what + " has an invalid amount");
     }
 }
 
@@ -208,7 +223,8 @@ void validateScene(const SceneDescription& scene, const std::string& source) {
     for (const Texture& t : scene.textures)
         if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * t.height)
             fail(source, "a texture is empty or has the wrong number of texels");
-    for (const Material& m : scene.materials) validateMaterial(m, scene.textures.size(), source);
+    for (const Material& m : scene.materials)
+        validateMaterial(m, scene.textures.size(), scene.materials.size(), source);
     size_t triangles = 0;
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         validateMesh(scene.meshes[i], i, scene.materials.size(), source);

@@ -386,15 +386,11 @@ void Parser::typedDirective(const Token& t) {
             if (!type || type->type != ParamType::String || type->strings.size() != 1)
                 throw errorAt(t.where,
                               "MakeNamedMaterial '" + arg + "' needs a \"string type\" parameter");
-            st_.namedMaterials[arg] = material(st_, type->strings[0], arg, ps, t.where);
+            makeNamedMaterial(st_, arg, type->strings[0], ps, t.where);
         }
     } else if (d == "NamedMaterial") {
         requireWorld(t, true);
-        const std::string name = stringArg(d);
-        const auto it = st_.namedMaterials.find(name);
-        if (it == st_.namedMaterials.end())
-            throw errorAt(t.where, "NamedMaterial: no material named '" + name + "'");
-        st_.gs.material = it->second;
+        st_.gs.material = namedMaterialRef(st_, stringArg(d), t.where, "NamedMaterial");
     } else if (d == "Texture") {
         requireWorld(t, true);
         const std::string name = stringArg(d), colorType = stringArg(d), cls = stringArg(d);
@@ -420,6 +416,7 @@ ImportResult runParser(std::unique_ptr<Tokenizer> tok, const std::string& dir,
     Parser parser(st);
     parser.pushSource(std::move(tok), dir);
     parser.run();
+    finishMaterials(st);
     return std::move(st.result);
 }
 }  // namespace

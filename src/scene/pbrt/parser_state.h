@@ -2,7 +2,7 @@
 // AttributeBegin/End saves and restores (PBRT 4th ed., appendix C; pbrt-v4's
 // BasicSceneBuilder), the named things, and the scene being built. Shared by
 // the grammar (parser.cpp) and the directives' meanings (options_block.cpp,
-// world_shapes.cpp, world_materials.cpp).
+// world_shapes.cpp, materials.cpp, world_lights.cpp, world_textures.cpp).
 #pragma once
 
 #include <map>
@@ -45,9 +45,16 @@ class ImportState {
     float shutterTime = 1, isoScale = 1;  // the film's scale is their product
     std::map<std::string, Matrix4> namedCoordinateSystems;
     std::map<std::string, int> namedMaterials;  // name → material index
-    std::map<std::string, int> objects;         // name → index into scene.objects
-    int currentObject = -1;                     // inside ObjectBegin … ObjectEnd
-    std::string mainDir;                        // pbrt-v4 resolves files against it
+    // Named materials used before MakeNamedMaterial defines them: where first
+    // used, and by which directive.
+    struct PendingMaterial {
+        SourceLocation where;
+        std::string user;
+    };
+    std::map<std::string, PendingMaterial> pendingMaterials;
+    std::map<std::string, int> objects;  // name → index into scene.objects
+    int currentObject = -1;              // inside ObjectBegin … ObjectEnd
+    std::string mainDir;                 // pbrt-v4 resolves files against it
 
     // Something pbrt-v4 has and we do not: an error, or under --lenient a
     // warning (`instead` says what is done instead).
@@ -92,6 +99,14 @@ void shape(ImportState& st, const std::string& type, const ParamSet& params,
 // Returns the new material's index.
 int material(ImportState& st, const std::string& type, const std::string& name,
              const ParamSet& params, const SourceLocation& where);
+// NamedMaterial's and mix's reference to a named material: its index, which
+// a later MakeNamedMaterial may fill (pbrt-v4 resolves names at the end).
+int namedMaterialRef(ImportState& st, const std::string& name, const SourceLocation& where,
+                     const std::string& user);
+void makeNamedMaterial(ImportState& st, const std::string& name, const std::string& type,
+                       const ParamSet& params, const SourceLocation& where);
+// At the end of the file: every named material used is defined.
+void finishMaterials(ImportState& st);
 void areaLightSource(ImportState& st, const std::string& type, const ParamSet& params,
                      const SourceLocation& where);
 void lightSource(ImportState& st, const std::string& type, const ParamSet& params,

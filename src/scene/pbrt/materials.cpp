@@ -1,0 +1,224 @@
+// Materials (pbrt-v4 File Format, "Materials"; pbrt-v4's materials.cpp): the
+// parameters of diffuse, conductor, dielectric, thindielectric,
+// diffusetransmission, mix and interface, and named materials, which may be
+// used before they are defined (pbrt-v4 resolves them when the scene is
+// complete). Float parameters are constants: a texture for one is
+// unsupported (its default under --lenient).
+#include <cmath>
+
+#include "scene/named_spectra.h"
+#include "scene/pbrt/parser_state.h"
+
+namespace pathlab::pbrt {
+namespace {
+
+Material greyDiffuse(const std::string& name) {
+    Material m;
+    m.name = name;
+    m.type = MaterialType::Diffuse;
+    m.albedo = Vec3f(0.5f);
+    return m;
+}
+
+void markAllUsed(const ParamSet& ps) {
+    for (const Param& p : ps.all()) p.used = true;
+}
+
+// A float parameter that may be given as a texture, which stands in for its
+// default.
+float constantFloat(ImportState& st, const ParamSet& ps, const std::string& name, float fallback) {
+    const Param* p = ps.find(name);
+    if (p && p->type == ParamType::Texture) {
+        st.unsupported(p->where, "a texture for '" + name + "'", "its default");
+        return fallback;
+    }
+    return ps.getFloat(name, fallback);
+}
+
+// pbrt-v4's roughness parameters: "uroughness" and "vroughness", each
+// defaulting to "roughness" (0), remapped to GGX alpha by RoughnessToAlpha
+// (alpha = √roughness) unless "remaproughness" is false.
+struct Alphas {
+    float u, v;
+};
+Alphas ggxAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
+    const float r = constantFloat(st, ps, "roughness", 0);
+    const float u = constantFloat(st, ps, "uroughness", r);
+    const float v = constantFloat(st, ps, "vroughness", r);
+    if (u < 0 || v < 0) throw errorAt(where, "roughness must not be negative");
+    if (!ps.getBool("remaproughness", true)) return {u, v};
+    return {std::sqrt(u), std::sqrt(v)};
+}
+
+void setRoughness(Material& m, Alphas a) {
+    m.roughness = a.u;
+    m.roughnessV = a.v == a.u ? -1 : a.v;
+}
+
+// A spectrum parameter given by one of pbrt-v4's named metal spectra, else
+// whatever rgbParam makes of it.
+std::optional<Vec3f> metalParam(ImportState& st, const ParamSet& ps, const std::string& name) {
+    const Param* p = ps.find(name);
+    if (p && p->type == ParamType::Spectrum && p->strings.size() == 1) {
+        if (auto rgb = namedMetalSpectrum(p->strings[0])) return rgb;
+        st.unsupported(p->where,
+                       "spectrum '" + p->strings[0] + "' for '" + name +
+                           "' (named spectra: " + namedSpectraList() + ")",
+                       "the parameter's default");
+        return std::nullopt;
+    }
+    return rgbParam(st, ps, name);
+}
+
+// A dielectric's "eta": a float, or a named glass spectrum reduced to its
+// index at the d line.
+float dielectricEta(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
+    float eta = 1.5f;
+    const Param* p = ps.find("eta");
+    if (p && p->type == ParamType::Float && p->numbers.size() == 1) {
+        eta = float(p->numbers[0]);
+    } else if (p && p->type == ParamType::Spectrum && p->strings.size() == 1 &&
+               namedGlassIor(p->strings[0])) {
+        eta = *namedGlassIor(p->strings[0]);
+    } else if (p) {
+        st.unsupported(p->where, "this eta (a float or a named glass spectrum is)", "eta 1.5");
+    }
+    if (!(eta > 0) || !std::isfinite(eta)) throw errorAt(where, "eta must be positive");
+    return eta;
+}
+
+void conductor(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
+    m.type = MaterialType::Conductor;
+    setRoughness(m, ggxAlphas(st, ps, where));
+    if (ps.find("reflectance")) {
+        if (ps.find("eta") || ps.find("k"))
+            throw errorAt(where, "conductor: give \"reflectance\" or \"eta\" and \"k\", not both");
+        // pbrt-v4's alternative: eta 1 and the k that reflects r at normal
+        // incidence, k = 2√r / √(1 − r), r clamped to [0, 0.9999].
+        Vec3f r(0.5f);
+        if (auto rgb = rgbParam(st, ps, "reflectance")) r = *rgb;
+        m.eta = Vec3f(1.0f);
+        const auto k = [](float rc) {
+            rc = std::clamp(rc, 0.0f, 0.9999f);
+            return 2 * std::sqrt(rc) / std::sqrt(1 - rc);
+        };
+        m.k = {k(r.x), k(r.y), k(r.z)};
+        return;
+    }
+    // pbrt-v4's default conductor is copper.
+    m.eta = *namedMetalSpectrum("metal-Cu-eta");
+    m.k = *namedMetalSpectrum("metal-Cu-k");
+    if (auto eta = metalParam(st, ps, "eta")) m.eta = *eta;
+    if (auto k = metalParam(st, ps, "k")) m.k = *k;
+    if (!(m.eta.x >= 0 && m.eta.y >= 0 && m.eta.z >= 0 && m.k.x >= 0 && m.k.y >= 0 && m.k.z >= 0))
+        throw errorAt(where, "conductor: eta and k must not be negative");
+}
+
+void diffuseTransmission(ImportState& st, const ParamSet& ps, Material& m) {
+    m.type = MaterialType::DiffuseTransmission;
+    Vec3f r(0.25f), t(0.25f);
+    if (auto rgb = rgbParam(st, ps, "reflectance")) r = *rgb;
+    if (auto rgb = rgbParam(st, ps, "transmittance")) t = *rgb;
+    const float scale = ps.getFloat("scale", 1);
+    // Clamped to [0, 1] as pbrt-v4's DiffuseTransmissionMaterial does.
+    const auto clamped = [&](Vec3f c) {
+        return Vec3f(std::clamp(scale * c.x, 0.0f, 1.0f), std::clamp(scale * c.y, 0.0f, 1.0f),
+                     std::clamp(scale * c.z, 0.0f, 1.0f));
+    };
+    m.albedo = clamped(r);
+    m.transmittance = clamped(t);
+}
+
+void mix(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
+    m.type = MaterialType::Mix;
+    const Param* names = ps.find("materials");
+    if (!names || names->type != ParamType::String || names->strings.size() != 2)
+        throw errorAt(where, "mix: needs \"string materials\" with two material names");
+    // As in pbrt-v4, a mix's materials are named materials defined before it
+    // (so no mix contains itself), and none is an interface.
+    for (int i = 0; i < 2; ++i) {
+        const std::string& part = names->strings[size_t(i)];
+        const auto it = st.namedMaterials.find(part);
+        if (it == st.namedMaterials.end() || st.pendingMaterials.count(part))
+            throw errorAt(where, "mix: no material named '" + part + "' defined before it");
+        if (st.result.scene.materials[size_t(it->second)].type == MaterialType::Interface)
+            throw errorAt(where, "mix: '" + part + "' is an interface, which cannot be mixed");
+        m.mix[i] = it->second;
+    }
+    m.amount = constantFloat(st, ps, "amount", 0.5f);
+    if (!std::isfinite(m.amount)) throw errorAt(where, "mix: amount must be a finite number");
+}
+
+Material makeMaterial(ImportState& st, const std::string& type, const std::string& name,
+                      const ParamSet& given, const SourceLocation& where) {
+    const ParamSet ps = given.withDefaults(st.gs.attributes["material"]);
+    ps.ignore("type");  // MakeNamedMaterial's
+    Material m = greyDiffuse(name.empty() ? type + "@" + std::to_string(where.line) : name);
+    for (const char* bump : {"displacement", "normalmap"})
+        if (ps.find(bump)) st.unsupported(where, std::string("material ") + bump, "no bump");
+    if (type == "diffuse") {
+        if (auto r = rgbParam(st, ps, "reflectance")) m.albedo = *r;
+    } else if (type == "dielectric" || type == "thindielectric") {
+        m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
+        m.albedo = Vec3f(1.0f);
+        m.ior = dielectricEta(st, ps, where);
+        setRoughness(m, type == "dielectric" ? ggxAlphas(st, ps, where) : Alphas{0, 0});
+    } else if (type == "conductor") {
+        conductor(st, ps, where, m);
+    } else if (type == "diffusetransmission") {
+        diffuseTransmission(st, ps, m);
+    } else if (type == "mix") {
+        mix(st, ps, where, m);
+    } else if (type == "interface") {
+        m.type = MaterialType::Interface;
+    } else {
+        st.unsupported(where, "material '" + type + "' (or these parameters of it)",
+                       "diffuse grey");
+        markAllUsed(ps);
+    }
+    st.checkUnused(ps, "Material \"" + type + "\"");
+    return m;
+}
+
+}  // namespace
+
+int material(ImportState& st, const std::string& type, const std::string& name,
+             const ParamSet& given, const SourceLocation& where) {
+    st.result.scene.materials.push_back(makeMaterial(st, type, name, given, where));
+    return int(st.result.scene.materials.size()) - 1;
+}
+
+int namedMaterialRef(ImportState& st, const std::string& name, const SourceLocation& where,
+                     const std::string& user) {
+    const auto it = st.namedMaterials.find(name);
+    if (it != st.namedMaterials.end()) return it->second;
+    // Not yet defined: a slot that MakeNamedMaterial fills later.
+    st.result.scene.materials.push_back(greyDiffuse(name));
+    const int index = int(st.result.scene.materials.size()) - 1;
+    st.namedMaterials[name] = index;
+    st.pendingMaterials.emplace(name, ImportState::PendingMaterial{where, user});
+    return index;
+}
+
+void makeNamedMaterial(ImportState& st, const std::string& name, const std::string& type,
+                       const ParamSet& ps, const SourceLocation& where) {
+    const auto it = st.namedMaterials.find(name);
+    if (it == st.namedMaterials.end()) {
+        st.namedMaterials[name] = material(st, type, name, ps, where);
+        return;
+    }
+    // pbrt-v4 rejects a redefinition too.
+    if (!st.pendingMaterials.count(name))
+        throw errorAt(where, "MakeNamedMaterial: material '" + name + "' is already defined");
+    // Made while still pending, so that a mix cannot name the material it defines.
+    Material m = makeMaterial(st, type, name, ps, where);
+    st.pendingMaterials.erase(name);
+    st.result.scene.materials[size_t(it->second)] = std::move(m);
+}
+
+void finishMaterials(ImportState& st) {
+    for (const auto& [name, use] : st.pendingMaterials)
+        throw errorAt(use.where, use.user + ": no material named '" + name + "'");
+}
+
+}  // namespace pathlab::pbrt
