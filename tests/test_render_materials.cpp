@@ -46,9 +46,8 @@ ImageMean renderMean(const SceneDescription& desc) {
     return meanOf(render(scene, s));
 }
 
-Material named(MaterialType type, float ior = 1.5f, float alpha = 0) {
+Material makeMaterial(MaterialType type, float ior = 1.5f, float alpha = 0) {
     Material m;
-    m.name = "m";
     m.type = type;
     m.ior = ior;
     m.roughness = alpha;
@@ -56,21 +55,21 @@ Material named(MaterialType type, float ior = 1.5f, float alpha = 0) {
 }
 
 TEST(MaterialFurnace, LosslessMaterialsAreInvisible) {
-    Material difftrans = named(MaterialType::DiffuseTransmission);
+    Material difftrans = makeMaterial(MaterialType::DiffuseTransmission);
     difftrans.albedo = Vec3f(0.4f);
     difftrans.transmittance = Vec3f(0.6f);
-    Material mix = named(MaterialType::Mix);
+    Material mix = makeMaterial(MaterialType::Mix);
     mix.mix[0] = 1, mix.mix[1] = 2, mix.amount = 0.3f;
     const struct {
         const char* name;
         SceneDescription scene;
     } cases[] = {
-        {"smooth glass", furnaceSpheres(named(MaterialType::Dielectric, 1.5f))},
-        {"smooth glass eta<1", furnaceSpheres(named(MaterialType::Dielectric, 0.75f))},
-        {"thin dielectric", furnaceSpheres(named(MaterialType::ThinDielectric, 1.5f))},
+        {"smooth glass", furnaceSpheres(makeMaterial(MaterialType::Dielectric, 1.5f))},
+        {"smooth glass eta<1", furnaceSpheres(makeMaterial(MaterialType::Dielectric, 0.75f))},
+        {"thin dielectric", furnaceSpheres(makeMaterial(MaterialType::ThinDielectric, 1.5f))},
         {"diffuse transmission", furnaceSpheres(difftrans)},
-        {"interface", furnaceSpheres(named(MaterialType::Interface))},
-        {"mix", furnaceSpheres(mix, {named(MaterialType::ThinDielectric), difftrans})},
+        {"interface", furnaceSpheres(makeMaterial(MaterialType::Interface))},
+        {"mix", furnaceSpheres(mix, {makeMaterial(MaterialType::ThinDielectric), difftrans})},
     };
     for (const auto& c : cases) {
         const ImageMean m = renderMean(c.scene);
@@ -80,7 +79,7 @@ TEST(MaterialFurnace, LosslessMaterialsAreInvisible) {
 
 TEST(MaterialFurnace, RoughGlassLosesOnlyWhatSingleScatteringLoses) {
     for (float alpha : {0.1f, 0.3f}) {
-        Material glass = named(MaterialType::Dielectric, 1.5f, alpha);
+        Material glass = makeMaterial(MaterialType::Dielectric, 1.5f, alpha);
         glass.roughnessV = alpha * 0.5f;  // anisotropic too
         const ImageMean m = renderMean(furnaceSpheres(glass));
         EXPECT_LE(m.mean, 1.0 + 5 * m.standardError * std::sqrt(3.0) + 1e-3) << alpha;
