@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <type_traits>
 #include <variant>
 
 #include "core/error.h"
@@ -18,6 +19,7 @@
 #include "render/film.h"
 #include "render/path_integrator.h"
 #include "render/pixel_filter.h"
+#include "render/running_sums.h"
 #include "sampling/registry.h"
 
 namespace pathlab {
@@ -73,8 +75,9 @@ FrameSetup makeFrame(const SceneDescription& desc, Vec2i resolution) {
 
 // Mean and variance of the mean of the first n samples, from running sums,
 // times the film's scale (variance by its square).
-void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, double scale, Image& image,
+void writePixel(const PlainSums& sums, int n, Vec2i p, double scale, Image& image,
                 Image& variance) {
+    const double *sum = sums.sum, *sumSq = sums.sumSq;
     float mean[3], var[3];
     for (int c = 0; c < 3; ++c) {
         double m = sum[c] / n;
@@ -86,20 +89,6 @@ void writePixel(const double* sum, const double* sumSq, int n, Vec2i p, double s
     image.set(p.x, p.y, Vec3f(mean[0], mean[1], mean[2]));
     variance.set(p.x, p.y, Vec3f(var[0], var[1], var[2]));
 }
-
-// A pixel's running sums of weighted samples (filters whose weights vary).
-struct WeightedSums {
-    double w = 0, w2 = 0, absW = 0;
-    double wL[3] = {0, 0, 0}, w2L[3] = {0, 0, 0}, w2L2[3] = {0, 0, 0}, absWL[3] = {0, 0, 0};
-    void add(double weight, Vec3f L) {
-        const double ww = weight * weight, a = std::abs(weight);
-        w += weight, w2 += ww, absW += a;
-        for (int c = 0; c < 3; ++c) {
-            wL[c] += weight * L[c], w2L[c] += ww * L[c], w2L2[c] += ww * L[c] * L[c];
-            absWL[c] += a * L[c];
-        }
-    }
-};
 
 // pbrt-v4's RGBFilm pixel, Σ w·L / Σ w, and the variance of that ratio by the
 // delta method — Σ w²(L − μ)² / (Σ w)², the usual estimate for
@@ -155,22 +144,24 @@ void traceCameraPacket(const RenderScene& scene, const FrameSetup& frame, S& sam
 
 // kWeighted: the filter's weights vary (Σ w·L / Σ w); otherwise every weight
 // is 1 and the pixel is the plain mean, summed exactly as it always was.
+template <bool kWeighted>
+using PixelSums = std::conditional_t<kWeighted, WeightedSums, PlainSums>;
+
+// Adds samples firstSample … spp − 1 of the pixel to `sums`.
 template <bool kWeighted, Sampler S>
 void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, Vec2i pixel,
                  const IntegratorSettings& integrator, const Checkpoints& checkpoints,
-                 TileResult& result) {
+                 PixelSums<kWeighted>& sums, int firstSample, TileResult& result) {
     const int spp = sampler.samplesPerPixel();
     const Clock::time_point start = checkpoints.timed ? Clock::now() : Clock::time_point{};
     const Vec2i at{pixel.x - frame.bounds.min.x, pixel.y - frame.bounds.min.y};  // in the image
     const uint64_t cameraDimensions = frame.camera.hasLens() ? 4 : 2;
-    double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
-    WeightedSums weighted;
     uint64_t nonFinite = 0;  // this pixel's, so far
     size_t next = 0;         // the next checkpoint
     // The pixel's paths go kBatchSamples at a time, a batch ending at each
     // checkpoint so that its time is the time of its samples; their camera
     // rays are traced as packets.
-    for (int i0 = 0, count; i0 < spp; i0 += count) {
+    for (int i0 = firstSample, count; i0 < spp; i0 += count) {
         count = std::min(kBatchSamples, checkpoints.spp[next] - i0);
         Vec3f origins[kBatchSamples], dirs[kBatchSamples];
         float weights[kBatchSamples];
@@ -197,17 +188,17 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
                 L = Vec3f(0.0f);
             }
             if constexpr (kWeighted)
-                weighted.add(weights[k], L);
+                sums.add(weights[k], L);
             else
-                for (int c = 0; c < 3; ++c) sum[c] += L[c], sumSq[c] += double(L[c]) * L[c];
+                sums.add(L);
             if (i0 + k + 1 != checkpoints.spp[next]) continue;
             // Summed in index order either way: bit-identical to a render
             // that stops here.
             if constexpr (kWeighted)
-                writeWeightedPixel(weighted, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                writeWeightedPixel(sums, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
                                    *checkpoints.variance[next]);
             else
-                writePixel(sum, sumSq, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                writePixel(sums, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
                            *checkpoints.variance[next]);
             result.nonFiniteAt[next] += nonFinite;
             if (checkpoints.timed)
@@ -219,18 +210,44 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
     result.nonFinite += nonFinite;
 }
 
+// The pixel's sums in `resume` (RenderSettings::resume), or fresh ones.
+template <bool kWeighted>
+PixelSums<kWeighted>& pixelSums(RunningSums* resume, const PixelBounds& b, int x, int y,
+                                PixelSums<kWeighted>& fresh) {
+    if (!resume) return fresh = {};
+    const size_t index = size_t(y - b.min.y) * size_t(b.width()) + size_t(x - b.min.x);
+    if constexpr (kWeighted)
+        return resume->weighted[index];
+    else
+        return resume->plain[index];
+}
+
 template <bool kWeighted, Sampler S>
 TileResult renderTile(const RenderScene& scene, const FrameSetup& frame, S& sampler,
                       const Tile& tile, const IntegratorSettings& integrator,
-                      const Checkpoints& checkpoints) {
+                      const Checkpoints& checkpoints, RunningSums* resume) {
     TileResult result;
     result.nonFiniteAt.assign(checkpoints.spp.size(), 0);
     result.secondsAt.assign(checkpoints.spp.size(), 0.0);
+    const int firstSample = resume ? resume->spp : 0;
+    PixelSums<kWeighted> fresh;
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x)
             renderPixel<kWeighted>(scene, frame, sampler, Vec2i{x, y}, integrator, checkpoints,
-                                   result);
+                                   pixelSums<kWeighted>(resume, frame.bounds, x, y, fresh),
+                                   firstSample, result);
     return result;
+}
+
+// Sizes empty running sums for the image, or checks that earlier ones fit it.
+void prepareRunningSums(RunningSums& sums, size_t pixels, bool weighted) {
+    if (sums.spp == 0) {
+        sums.plain.assign(weighted ? 0 : pixels, PlainSums{});
+        sums.weighted.assign(weighted ? pixels : 0, WeightedSums{});
+        return;
+    }
+    if ((weighted ? sums.weighted.size() : sums.plain.size()) != pixels)
+        throw std::logic_error("running sums of another image or film");
 }
 
 class ProgressBar {
@@ -285,6 +302,15 @@ void validateRenderSettings(const RenderSettings& s) {
     if (!s.prefixSpp.empty() && !info.progressive)
         throw InputError("sampler '" + s.sampler +
                          "' is not progressive: its first samples are not a render of fewer");
+    if (s.resume && s.resume->spp > 0) {
+        if (!info.progressive)
+            throw InputError("sampler '" + s.sampler + "' is not progressive: a render of " +
+                             std::to_string(s.samplesPerPixel) + " spp cannot continue one of " +
+                             std::to_string(s.resume->spp));
+        if (s.resume->spp >= s.samplesPerPixel || !s.prefixSpp.empty())
+            throw InputError("a continued render needs more spp than the " +
+                             std::to_string(s.resume->spp) + " it continues, and no prefixes");
+    }
 }
 
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
@@ -321,6 +347,8 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     checkpoints.image.push_back(&out.image);
     checkpoints.variance.push_back(&out.varianceOfMean);
     checkpoints.timed = !out.prefixes.empty();
+    RunningSums* const resume = settings.resume;
+    if (resume) prepareRunningSums(*resume, size_t(w) * size_t(h), weighted);
 
     std::vector<TileResult> results(tiles.size());
     ProgressBar progress(settings.progress, tiles.size());
@@ -345,9 +373,9 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
             results[t] = std::visit(
                 [&](auto& s) {
                     return weighted ? renderTile<true>(scene, frame, s, tiles[t], integrator,
-                                                       checkpoints)
+                                                       checkpoints, resume)
                                     : renderTile<false>(scene, frame, s, tiles[t], integrator,
-                                                        checkpoints);
+                                                        checkpoints, resume);
                 },
                 sampler);
         }
@@ -361,7 +389,10 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     const double parallelSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - parallelStart).count();
     happensAfter(&tasksEnd);
-    if (control && control->cancel) throw RenderCancelled();
+    if (control && control->cancel) {
+        if (resume) *resume = {};  // some pixels summed more samples than others
+        throw RenderCancelled();
+    }
 
     std::vector<double> pixelSeconds(checkpoints.spp.size(), 0.0);
     for (const TileResult& r : results) {
@@ -373,7 +404,9 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         for (size_t k = 0; k < out.prefixes.size(); ++k)
             out.prefixes[k].nonFinite += r.nonFiniteAt[k];
     }
-    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(settings.samplesPerPixel);
+    const int firstSample = resume ? resume->spp : 0;
+    if (resume) resume->spp = settings.samplesPerPixel;
+    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(settings.samplesPerPixel - firstSample);
     out.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double fixedSeconds = std::max(0.0, out.stats.seconds - parallelSeconds);

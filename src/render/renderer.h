@@ -12,6 +12,7 @@
 #include "core/image.h"
 #include "render/integrator_settings.h"
 #include "render/render_scene.h"
+#include "render/running_sums.h"
 
 namespace pathlab {
 
@@ -48,6 +49,11 @@ struct RenderSettings {
     // Off only to compare the two.
     bool weightedFilm = false;
     RenderControl* control = nullptr;  // optional; outlives the render
+    // Optional: continue from these sums of an earlier render of the same
+    // scene and settings with fewer spp (progressive samplers only, no
+    // prefixes), rendering only the samples after its spp, and leave the sums
+    // of all samplesPerPixel in it; emptied when the render is cancelled.
+    RunningSums* resume = nullptr;
 };
 
 struct RenderStats {
