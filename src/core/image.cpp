@@ -293,22 +293,22 @@ void checkWritable(const std::string& path) {
                          "'");
 }
 
+std::string encodeImage(const Image& image, ImageFormat format, float exposure) {
+    switch (format) {
+        case ImageFormat::Exr:
+            return encodeExr(image);
+        case ImageFormat::Png:
+            return encodePng(image, exposure);
+        case ImageFormat::Pfm:
+            return encodePfm(image);
+    }
+    return {};
+}
+
 void writeImage(const std::string& path, const Image& image, float exposure) {
     const ImageFormat format = imageFormatFromPath(path);
     checkWritable(path);
-    std::string bytes;
-    switch (format) {
-        case ImageFormat::Exr:
-            bytes = encodeExr(image);
-            break;
-        case ImageFormat::Png:
-            bytes = encodePng(image, exposure);
-            break;
-        case ImageFormat::Pfm:
-            bytes = encodePfm(image);
-            break;
-    }
-    writeFileAtomic(path, bytes);
+    writeFileAtomic(path, encodeImage(image, format, exposure));
 }
 
 }  // namespace pathlab

@@ -49,6 +49,9 @@ Image readImage(const std::string& path);
 // left on device writing 'x.exr'"); never leaves a partial file behind.
 void writeImage(const std::string& path, const Image& image, float exposure = 0.0f);
 
+// The bytes of the file writeImage would write (a server sends them as is).
+std::string encodeImage(const Image& image, ImageFormat format, float exposure = 0.0f);
+
 // Fails early (InputError) when `path` cannot be created: missing directory or
 // no permission. Used before long computations so no work is lost.
 void checkWritable(const std::string& path);
