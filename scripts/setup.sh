@@ -23,6 +23,8 @@ PACKAGES=(
   # The Python module (docs/python.md): pybind11 and Python's headers to build
   # it, pytest for its tests, pandas for study tables as DataFrames.
   pybind11-dev python3-dev python3-pytest python3-pandas python3-setuptools
+  # `pathlab view`, the browser lab: its HTTP server and the tests' client.
+  libcpp-httplib-dev
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi

@@ -14,5 +14,6 @@ void addPointsCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 
 }  // namespace pathlab::cli

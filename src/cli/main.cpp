@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     pathlab::cli::addStudyCommand(app);
     pathlab::cli::addBenchCommand(app);
     pathlab::cli::addReportCommand(app);
+    pathlab::cli::addViewCommand(app);
     // CLI11 would say "A subcommand is required" for a misspelt command.
     std::string names;
     bool known = false;

@@ -1,0 +1,30 @@
+#include "view/status_json.h"
+
+namespace pathlab::view {
+
+nlohmann::json statusJson(const SessionStatus& status) {
+    const ViewSettings& s = status.settings;
+    nlohmann::json j{
+        {"scene", s.scene},
+        {"sampler", s.sampler},
+        {"compare", s.compare.empty() ? nlohmann::json() : nlohmann::json(s.compare)},
+        {"seed", s.seed},
+        {"spp", status.spp},
+        {"width", status.width},
+        {"height", status.height},
+        {"paths_per_second", status.pathsPerSecond},
+        {"elapsed", status.elapsed},
+        {"running", status.running},
+        {"paused", s.paused},
+        {"max_depth", s.maxDepth},
+        {"russian_roulette", s.russianRoulette},
+        {"max_spp", s.maxSpp},
+        {"exposure", s.exposure},
+        {"tone_map", toneMapName(s.toneMap)},
+        {"generation", status.generation},
+        {"error", status.error.empty() ? nlohmann::json() : nlohmann::json(status.error)},
+    };
+    return j;
+}
+
+}  // namespace pathlab::view

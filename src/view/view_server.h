@@ -1,0 +1,47 @@
+// The HTTP side of `pathlab view` (cpp-httplib): the page's own files and the
+// JSON/image API over one ViewSession (docs/view.md lists the endpoints).
+// Nothing else is served: no path reaches the file system.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "view/view_session.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace pathlab::view {
+
+// Request bodies larger than this are refused (HTTP 413).
+constexpr size_t kMaxRequestBody = size_t(1) << 20;
+
+class ViewServer {
+  public:
+    explicit ViewServer(ViewSession& session);
+    ~ViewServer();
+
+    // Binds to host:port (port 0: any free port) and returns the port.
+    // Throws InputError when the address is in use or cannot be bound.
+    int bind(const std::string& host, int port);
+    // Serves until stop() or POST /api/stop; returns whether it was stopped
+    // (rather than failing).
+    bool listen();
+    // From any thread, not from a signal handler. A stop before listen()
+    // makes listen() return at once; one while listen() is starting may be
+    // lost (call again).
+    void stop();
+
+  private:
+    void addApiRoutes();
+    void addImageRoutes();
+    void addPageRoutes();
+
+    ViewSession& session_;
+    std::unique_ptr<httplib::Server> http_;
+    std::atomic<bool> stopRequested_{false};
+};
+
+}  // namespace pathlab::view

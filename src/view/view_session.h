@@ -1,0 +1,80 @@
+// The accumulation a `pathlab view` server shows: a worker thread renders
+// passes of sampler A (and B, at equal spp, with --compare) and publishes the
+// image after each. Render settings restart it; display settings, pause and
+// the HTTP threads reading frames do not disturb it.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "core/image.h"
+#include "render/renderer.h"
+#include "view/view_settings.h"
+
+namespace pathlab::view {
+
+// The images after a finished pass; shared, never changed once published.
+struct Frame {
+    std::shared_ptr<const Image> a, b;  // b: null without a compare sampler
+    int spp = 0;
+    uint64_t generation = 0;  // increments on every restart
+};
+
+struct SessionStatus {
+    ViewSettings settings;
+    int spp = 0, width = 0, height = 0;
+    double pathsPerSecond = 0;  // both samplers' paths over render time since the restart
+    double elapsed = 0;         // wall seconds since the restart
+    bool running = false;       // neither paused nor at max_spp
+    uint64_t generation = 0;
+    std::string error;  // a render that failed (then running is false)
+};
+
+// The scene a settings object names, loaded (InputError when it cannot be).
+std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene);
+
+class ViewSession {
+  public:
+    // Starts rendering at once. `scene` is settings.scene, loaded.
+    ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene, int threads = 0);
+    ~ViewSession();  // stops the worker
+    ViewSession(const ViewSession&) = delete;
+    ViewSession& operator=(const ViewSession&) = delete;
+
+    // Applies a JSON object of settings (view_settings.h). Loads a new scene
+    // before anything changes; throws InputError and changes nothing when a
+    // value is bad. A change of render settings restarts accumulation.
+    SessionStatus update(const nlohmann::json& changes);
+    void reset();  // starts accumulation over with the same settings
+    Frame frame() const;
+    SessionStatus status() const;
+    // Blocks until a pass of at least `spp` of the current generation is
+    // published (or the session stops); for tests and benchmarks.
+    Frame waitForSpp(int spp) const;
+    // Blocks until the worker waits for work (paused, done, failed).
+    void waitUntilIdle() const;
+
+  private:
+    void work();
+    void requestRestartLocked();
+
+    mutable std::mutex mutex_;
+    mutable std::condition_variable changed_;
+    ViewSettings settings_;
+    std::shared_ptr<const RenderScene> scene_;
+    int threads_;
+    bool stopping_ = false, restart_ = false, idle_ = false;
+    std::string error_;  // why the last pass failed; rendering waits for new settings
+    Frame frame_;
+    double renderSeconds_ = 0;
+    uint64_t paths_ = 0;
+    std::chrono::steady_clock::time_point started_;
+    RenderControl control_;
+    std::thread worker_;
+};
+
+}  // namespace pathlab::view

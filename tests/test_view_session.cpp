@@ -1,0 +1,95 @@
+// `pathlab view`'s accumulation: after every pass the image is `pathlab
+// render`'s at that spp, for progressive samplers (continued) and others
+// (re-rendered), A and B at equal spp; render settings restart it, display
+// settings do not.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "view/accumulation.h"
+#include "view_test_util.h"
+
+namespace pathlab {
+namespace {
+
+using testing::renderedLike;
+using testing::sameBytes;
+using testing::smallViewSettings;
+
+TEST(ViewAccumulation, PassesEqualRendersOfTheirSpp) {
+    const view::ViewSettings v = smallViewSettings("sobol-owen");
+    const auto scene = view::loadViewScene(v.scene);
+    for (const std::string sampler : {"sobol-owen", "pmj02"}) {  // progressive, not
+        RenderSettings s;
+        s.sampler = sampler, s.seed = v.seed, s.resolution = v.size, s.maxDepth = v.maxDepth;
+        view::Accumulation acc(s);
+        for (int spp : {1, 2, 4, 7}) {
+            if (!acc.progressive() && spp == 7) continue;  // pmj02 passes double
+            acc.advance(*scene, spp);
+            EXPECT_EQ(acc.spp(), spp);
+            EXPECT_TRUE(sameBytes(acc.image(), renderedLike(*scene, v, sampler, spp)))
+                << sampler << " at " << spp;
+        }
+    }
+}
+
+TEST(ViewSession, FramesEqualRendersForBothSamplers) {
+    const view::ViewSettings v = smallViewSettings("independent", "stratified");
+    const auto scene = view::loadViewScene(v.scene);
+    view::ViewSession session(v, scene, 2);
+    const view::Frame frame = session.waitForSpp(4);
+    ASSERT_TRUE(frame.a && frame.b);
+    EXPECT_TRUE(sameBytes(*frame.a, renderedLike(*scene, v, "independent", frame.spp)));
+    EXPECT_TRUE(sameBytes(*frame.b, renderedLike(*scene, v, "stratified", frame.spp)));
+}
+
+TEST(ViewSession, RenderSettingsRestartDisplaySettingsDoNot) {
+    view::ViewSettings v = smallViewSettings("independent");
+    const auto scene = view::loadViewScene(v.scene);
+    view::ViewSession session(v, scene, 2);
+    const view::Frame before = session.waitForSpp(2);
+    const view::SessionStatus shown = session.update({{"exposure", 1.5}, {"tone_map", "aces"}});
+    EXPECT_EQ(shown.generation, before.generation) << "display changes keep the sums";
+    EXPECT_GE(shown.spp, before.spp);
+    EXPECT_EQ(shown.settings.toneMap, view::ToneMap::Aces);
+    const view::SessionStatus restarted = session.update({{"sampler", "halton"}});
+    EXPECT_EQ(restarted.generation, before.generation + 1);
+    const view::Frame after = session.waitForSpp(1);
+    EXPECT_EQ(after.generation, before.generation + 1);
+    v.sampler = "halton";
+    EXPECT_TRUE(sameBytes(*after.a, renderedLike(*scene, v, "halton", after.spp)));
+}
+
+TEST(ViewSession, BadSettingsChangeNothing) {
+    const view::ViewSettings v = smallViewSettings("independent");
+    view::ViewSession session(v, view::loadViewScene(v.scene), 2);
+    const uint64_t generation = session.waitForSpp(1).generation;
+    for (const char* bad :
+         {R"({"sampler": "no-such-sampler"})", R"({"max_depth": -1})",
+          R"({"scene": "no-such-scene.json"})", R"({"colour": 1})", R"({"exposure": "bright"})",
+          R"({"tone_map": "filmic"})", R"({"seed": "-3"})", R"([1, 2])"}) {
+        EXPECT_THROW(session.update(nlohmann::json::parse(bad)), InputError) << bad;
+    }
+    const view::SessionStatus s = session.status();
+    EXPECT_EQ(s.generation, generation);
+    EXPECT_EQ(s.settings.sampler, "independent");
+    EXPECT_EQ(s.settings.maxDepth, v.maxDepth);
+}
+
+TEST(ViewSession, PauseStopsPassesUntilResumed) {
+    const view::ViewSettings v = smallViewSettings("independent");
+    view::ViewSession session(v, view::loadViewScene(v.scene), 2);
+    session.waitForSpp(1);
+    session.update({{"paused", true}});
+    session.waitUntilIdle();  // a pass under way lands first
+    const int paused = session.status().spp;
+    EXPECT_FALSE(session.status().running);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_EQ(session.status().spp, paused) << "no pass while paused";
+    session.update({{"paused", false}});
+    EXPECT_GT(session.waitForSpp(paused + 1).spp, paused);
+}
+
+}  // namespace
+}  // namespace pathlab
