@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "metrics/image_metrics.h"
 #include "view/accumulation.h"
 #include "view_test_util.h"
 
@@ -89,6 +90,35 @@ TEST(ViewSession, PauseStopsPassesUntilResumed) {
     EXPECT_EQ(session.status().spp, paused) << "no pass while paused";
     session.update({{"paused", false}});
     EXPECT_GT(session.waitForSpp(paused + 1).spp, paused);
+}
+
+TEST(ViewSession, ErrorAgainstAReferenceAtPowersOfTwo) {
+    const view::ViewSettings v = smallViewSettings("independent", "sobol-owen");
+    const auto scene = view::loadViewScene(v.scene);
+    const auto reference =
+        std::make_shared<const Image>(renderedLike(*scene, v, "sobol-owen", 256));
+    view::ViewSession session(v, scene, 2, reference);
+    std::vector<view::ErrorPoint> points;
+    for (int waited = 0; waited < 2000 && (points.empty() || points.back().spp < 8); ++waited) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        points = session.errorPoints();
+    }
+    ASSERT_GE(points.size(), 3u);
+    EXPECT_EQ(points.front().spp, 1);
+    for (size_t i = 1; i < points.size(); ++i) {
+        int power = 1;
+        while (power <= points[i - 1].spp) power *= 2;
+        EXPECT_GE(points[i].spp, power) << "one point per power of two";
+        EXPECT_LT(points[i].spp, 3 * power) << "a pass at most triples the count";
+    }
+    for (const view::ErrorPoint& p : points) {
+        EXPECT_EQ(p.mseA, meanSquaredError(*reference, renderedLike(*scene, v, v.sampler, p.spp)));
+        EXPECT_EQ(p.mseB, meanSquaredError(*reference, renderedLike(*scene, v, v.compare, p.spp)));
+        EXPECT_GT(p.flipA, 0);
+        EXPECT_LT(p.flipA, 1);
+    }
+    EXPECT_LT(points.back().mseA, points.front().mseA);
+    EXPECT_TRUE(session.status().reference);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/seed.h"
 #include "render/render_options.h"
 #include "view/view_server.h"
@@ -19,7 +20,7 @@ namespace {
 
 struct ViewOptions {
     view::ViewSettings settings;
-    std::string size, seed = "0", host = "127.0.0.1";
+    std::string size, seed = "0", host = "127.0.0.1", reference;
     int port = 8642, threads = 0;
     bool noRoulette = false;
 };
@@ -70,7 +71,15 @@ void runView(ViewOptions& o) {
         throw InputError("--port must be between 0 and 65535, got " + std::to_string(o.port));
     view::validateViewSettings(s);
     SignalStopper signals;  // before any thread starts
-    view::ViewSession session(s, view::loadViewScene(s.scene), o.threads);
+    std::shared_ptr<const Image> reference;
+    if (!o.reference.empty()) {
+        reference = std::make_shared<const Image>(readImage(o.reference));
+        if (s.size.x > 0 && (reference->width != s.size.x || reference->height != s.size.y))
+            throw InputError("--reference '" + o.reference + "' is " +
+                             std::to_string(reference->width) + "x" +
+                             std::to_string(reference->height) + ", not the --size " + o.size);
+    }
+    view::ViewSession session(s, view::loadViewScene(s.scene), o.threads, reference);
     view::ViewServer server(session);
     const int port = server.bind(o.host, o.port);
     std::printf(
@@ -101,6 +110,8 @@ void addViewCommand(CLI::App& app) {
     cmd->add_flag("--no-russian-roulette", o->noRoulette, "Disable Russian roulette");
     cmd->add_option("--max-spp", o->settings.maxSpp, "Stop accumulating at this spp")
         ->capture_default_str();
+    cmd->add_option("--reference", o->reference,
+                    "A converged image (.exr/.pfm) to measure MSE and FLIP against, live");
     cmd->add_option("--host", o->host, "Address to listen on (0.0.0.0: every interface)")
         ->capture_default_str();
     cmd->add_option("--port", o->port, "Port to listen on (0: any free port)")

@@ -22,6 +22,7 @@ nlohmann::json statusJson(const SessionStatus& status) {
         {"exposure", s.exposure},
         {"tone_map", toneMapName(s.toneMap)},
         {"generation", status.generation},
+        {"reference", status.reference},
         {"error", status.error.empty() ? nlohmann::json() : nlohmann::json(status.error)},
     };
     return j;

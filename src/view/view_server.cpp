@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "sampling/registry.h"
 #include "scene/loader.h"
+#include "view/error_history.h"
 #include "view/status_json.h"
 #include "view/tone_map.h"
 #include "view/web_assets.h"
@@ -146,9 +147,9 @@ void ViewServer::addApiRoutes() {
                                 {"progressive", info.progressive}});
         sendJson(res, json{{"samplers", samplers}, {"scenes", builtinSceneNames()}});
     });
-    http_->Get("/api/error", [](const httplib::Request&, httplib::Response& res) {
-        const json none{{"mse", json::array()}, {"flip", json::array()}};
-        sendJson(res, json{{"spp", json::array()}, {"a", none}, {"b", none}});
+    http_->Get("/api/error", [this](const httplib::Request&, httplib::Response& res) {
+        const bool hasB = !session_.status().settings.compare.empty();
+        sendJson(res, errorJson(session_.errorPoints(), hasB));
     });
 }
 

@@ -44,9 +44,13 @@ std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene) {
 }
 
 ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene,
-                         int threads)
+                         int threads, std::shared_ptr<const Image> reference)
     : settings_(std::move(settings)), scene_(std::move(scene)), threads_(threads) {
     validateViewSettings(settings_);
+    if (reference) {
+        errors_ = std::make_unique<ErrorHistory>(std::move(reference));
+        referenceScene_ = settings_.scene;
+    }
     requestRestartLocked();  // generation 1; no other thread yet
     worker_ = std::thread([this] { work(); });
 }
@@ -95,6 +99,7 @@ void ViewSession::work() {
                               renderSettingsFor(settings_, settings_.compare, threads_, &control_));
                 generation = frame_.generation;
                 batch = 1, lastPass = 0;
+                if (errors_) errors_->clear();
                 changed_.notify_all();
             }
             const bool progressive = a->progressive() && (!b || b->progressive());
@@ -113,15 +118,35 @@ void ViewSession::work() {
             continue;
         }
         lastPass = std::chrono::duration<double>(Clock::now() - start).count();
+        bool measure = false;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (generation != frame_.generation || restart_) continue;
+            frame_.a = std::make_shared<const Image>(a->image());
+            frame_.b = b ? std::make_shared<const Image>(b->image()) : nullptr;
+            frame_.spp = target;
+            renderSeconds_ = a->seconds() + (b ? b->seconds() : 0);
+            paths_ = a->paths() + (b ? b->paths() : 0);
+            measure = errors_ && errors_->due(target) && referenceFits(a->image());
+            changed_.notify_all();
+        }
+        if (!measure) continue;
+        // Outside the lock: ꟻLIP takes a while, and only this thread uses errors_.
+        errors_->measure(target, a->image(), b ? &b->image() : nullptr);
         std::lock_guard<std::mutex> lock(mutex_);
-        if (generation != frame_.generation || restart_) continue;
-        frame_.a = std::make_shared<const Image>(a->image());
-        frame_.b = b ? std::make_shared<const Image>(b->image()) : nullptr;
-        frame_.spp = target;
-        renderSeconds_ = a->seconds() + (b ? b->seconds() : 0);
-        paths_ = a->paths() + (b ? b->paths() : 0);
-        changed_.notify_all();
+        if (generation == frame_.generation) errorPoints_ = errors_->points();
     }
+}
+
+// Called with the lock held.
+bool ViewSession::referenceFits(const Image& image) const {
+    return errors_ && settings_.scene == referenceScene_ &&
+           errors_->reference().width == image.width && errors_->reference().height == image.height;
+}
+
+std::vector<ErrorPoint> ViewSession::errorPoints() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return errorPoints_;
 }
 
 SessionStatus ViewSession::update(const nlohmann::json& changes) {
@@ -159,6 +184,7 @@ void ViewSession::requestRestartLocked() {
     restart_ = true;
     control_.cancel = true;
     frame_ = Frame{nullptr, nullptr, 0, frame_.generation + 1};
+    errorPoints_.clear();
     renderSeconds_ = 0, paths_ = 0, started_ = Clock::now();
 }
 
@@ -178,6 +204,7 @@ SessionStatus ViewSession::status() const {
     s.running = !settings_.paused && error_.empty() && frame_.spp < settings_.maxSpp;
     s.generation = frame_.generation;
     s.error = error_;
+    s.reference = frame_.a && referenceFits(*frame_.a);
     return s;
 }
 

@@ -10,9 +10,11 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "core/image.h"
 #include "render/renderer.h"
+#include "view/error_history.h"
 #include "view/view_settings.h"
 
 namespace pathlab::view {
@@ -29,6 +31,7 @@ struct SessionStatus {
     int spp = 0, width = 0, height = 0;
     double pathsPerSecond = 0;  // both samplers' paths over render time since the restart
     double elapsed = 0;         // wall seconds since the restart
+    bool reference = false;     // is the error against a reference measured?
     bool running = false;       // neither paused nor at max_spp
     uint64_t generation = 0;
     std::string error;  // a render that failed (then running is false)
@@ -39,8 +42,12 @@ std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene);
 
 class ViewSession {
   public:
-    // Starts rendering at once. `scene` is settings.scene, loaded.
-    ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene, int threads = 0);
+    // Starts rendering at once. `scene` is settings.scene, loaded. With a
+    // `reference` (linear RGB), the error of A and B against it is measured
+    // at log-spaced spp (ErrorHistory) while the scene is that first one and
+    // the image has the reference's size.
+    ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene, int threads = 0,
+                std::shared_ptr<const Image> reference = nullptr);
     ~ViewSession();  // stops the worker
     ViewSession(const ViewSession&) = delete;
     ViewSession& operator=(const ViewSession&) = delete;
@@ -55,11 +62,14 @@ class ViewSession {
     // Blocks until a pass of at least `spp` of the current generation is
     // published (or the session stops); for tests and benchmarks.
     Frame waitForSpp(int spp) const;
+    // The error measured so far in this generation (empty without a reference).
+    std::vector<ErrorPoint> errorPoints() const;
     // Blocks until the worker waits for work (paused, done, failed).
     void waitUntilIdle() const;
 
   private:
     void work();
+    bool referenceFits(const Image& image) const;
     void requestRestartLocked();
 
     mutable std::mutex mutex_;
@@ -74,6 +84,9 @@ class ViewSession {
     uint64_t paths_ = 0;
     std::chrono::steady_clock::time_point started_;
     RenderControl control_;
+    std::unique_ptr<ErrorHistory> errors_;  // the worker's
+    std::string referenceScene_;            // the scene the reference shows
+    std::vector<ErrorPoint> errorPoints_;   // errors_'s, published
     std::thread worker_;
 };
 

@@ -70,12 +70,63 @@ async function refreshImages(s) {
   }
 }
 
+// The log-log plot of /api/error: each curve scaled to the plot's decades,
+// with a line of slope −1 (error ∝ 1/spp, plain Monte Carlo) through A's
+// first MSE for comparison.
+function plotError(e) {
+  const c = $('error_plot'), g = c.getContext('2d'), W = c.width, H = c.height, m = 18;
+  g.clearRect(0, 0, W, H);
+  const series = [[e.a.mse, '#4af', []], [e.b.mse, '#fa4', []], [e.a.flip, '#4af', [4, 3]],
+    [e.b.flip, '#fa4', [4, 3]]].filter(([v]) => v.length === e.spp.length && v.length > 0);
+  const values = series.flatMap(([v]) => v).filter((v) => v > 0);
+  if (!values.length) return;
+  const lx = (spp) => Math.log2(spp), ly = (v) => Math.log10(v);
+  const x0 = 0, x1 = Math.max(1, lx(e.spp[e.spp.length - 1]));
+  const y0 = Math.floor(ly(Math.min(...values))), y1 = Math.ceil(ly(Math.max(...values)));
+  const px = (spp) => m + (lx(spp) - x0) / (x1 - x0) * (W - 2 * m);
+  const py = (v) => H - m - (ly(v) - y0) / Math.max(1, y1 - y0) * (H - 2 * m);
+  g.strokeStyle = '#555';
+  g.strokeRect(m, m, W - 2 * m, H - 2 * m);
+  g.fillStyle = '#999';
+  g.font = '10px system-ui';
+  g.fillText(`1e${y1}`, 0, m - 4);
+  g.fillText(`1e${y0}`, 0, H - 4);
+  g.fillText(`${e.spp[e.spp.length - 1]} spp`, W - m - 40, H - 4);
+  const first = e.a.mse[0], last = e.spp[e.spp.length - 1];
+  g.strokeStyle = '#888';
+  g.setLineDash([]);
+  g.beginPath();
+  g.moveTo(px(1), py(first));
+  g.lineTo(px(last), py(first / last));
+  g.stroke();
+  for (const [v, colour, dash] of series) {
+    g.strokeStyle = colour;
+    g.setLineDash(dash);
+    g.beginPath();
+    v.forEach((y, i) => (i ? g.lineTo : g.moveTo).call(g, px(e.spp[i]), py(Math.max(y, 1e-30))));
+    g.stroke();
+  }
+  g.setLineDash([]);
+}
+
+async function refreshError(s) {
+  $('error_panel').hidden = !s.reference;
+  if (!s.reference) return;
+  const key = `${s.generation}/${s.spp}`;
+  if (key === state.errorShown) return;
+  state.errorShown = key;
+  const e = await api('/api/error');
+  state.errorPoints = e.spp.length;
+  plotError(e);
+}
+
 async function poll() {
   try {
     const s = await api('/api/status');
     state.status = s;
     showStatus(s);
     await refreshImages(s);
+    await refreshError(s);
   } catch (e) {
     $('stats').textContent = 'disconnected';
   }

@@ -1,0 +1,47 @@
+// Live error against a reference image: MSE and HDR-ꟻLIP (as a study measures
+// them) of A and B after passes at log-spaced sample counts — the first pass
+// at or beyond each power of two — so the curves are evenly spaced on a
+// log-log plot and measuring costs a shrinking share of the render.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <vector>
+
+#include "core/image.h"
+#include "metrics/flip.h"
+
+namespace pathlab::view {
+
+struct ErrorPoint {
+    int spp = 0;
+    double mseA = 0, flipA = 0, mseB = 0, flipB = 0;  // B: 0 without a compare sampler
+};
+
+class ErrorHistory {
+  public:
+    // `reference`: linear RGB of the image the passes converge to.
+    explicit ErrorHistory(std::shared_ptr<const Image> reference);
+    ~ErrorHistory();
+
+    const Image& reference() const { return *reference_; }
+    // Does a pass of `spp` get measured? (The first at or past the next power
+    // of two since the last one measured.)
+    bool due(int spp) const { return spp >= nextSpp_; }
+    // Measures a pass (b may be null) and appends it.
+    void measure(int spp, const Image& a, const Image* b);
+    void clear();  // a restart
+    const std::vector<ErrorPoint>& points() const { return points_; }
+
+  private:
+    std::shared_ptr<const Image> reference_;
+    std::unique_ptr<flip::PreparedReference> flip_;
+    std::vector<ErrorPoint> points_;
+    int nextSpp_ = 1;
+};
+
+// {"spp": [...], "a": {"mse": [...], "flip": [...]}, "b": {...}}: empty arrays
+// without a history, "b" empty without a compare sampler.
+nlohmann::json errorJson(const std::vector<ErrorPoint>& points, bool hasB);
+
+}  // namespace pathlab::view
