@@ -114,6 +114,21 @@ TEST(ViewServer, SettingsRestartOnlyForTheRender) {
     EXPECT_EQ(json::parse(res->body)["generation"], generation + 2);
 }
 
+TEST(ViewServer, DisplayChangesReachThePng) {
+    RunningServer server(smallViewSettings("independent"));
+    server.session.waitForSpp(1);
+    ASSERT_TRUE(postJson(server.client, "/api/settings", R"({"paused": true})"));
+    server.session.waitUntilIdle();
+    const auto png = [&] { return server.client.Get("/api/image?which=a&format=png")->body; };
+    const std::string first = png();
+    EXPECT_EQ(png(), first) << "the same frame and display give the same PNG";
+    ASSERT_TRUE(postJson(server.client, "/api/settings", R"({"exposure": 2})"));
+    const std::string brighter = png();
+    EXPECT_NE(brighter, first);
+    ASSERT_TRUE(postJson(server.client, "/api/settings", R"({"tone_map": "aces"})"));
+    EXPECT_NE(png(), brighter);
+}
+
 TEST(ViewServer, BadRequestsAreRefusedAndChangeNothing) {
     RunningServer server(smallViewSettings("independent"));
     server.session.waitForSpp(1);

@@ -168,8 +168,8 @@ void ViewServer::addImageRoutes() {
         res.set_header("X-Pathlab-Spp", std::to_string(frame.spp));
         res.set_header("X-Pathlab-Generation", std::to_string(frame.generation));
         if (format == "png") {
-            const ViewSettings s = session_.status().settings;
-            res.set_content(encodeDisplayPng(*image, s.exposure, s.toneMap), "image/png");
+            const std::shared_ptr<const std::string> png = displayPng(frame, which == "a" ? 0 : 1);
+            res.set_content(png->data(), png->size(), "image/png");
         } else if (format == "exr") {
             res.set_content(encodeImage(*image, ImageFormat::Exr), "image/x-exr");
         } else {
@@ -189,6 +189,21 @@ void ViewServer::addImageRoutes() {
                            {"a", pixelJson(frame.a, *x, *y)},
                            {"b", pixelJson(frame.b, *x, *y)}});
     });
+}
+
+std::shared_ptr<const std::string> ViewServer::displayPng(const Frame& frame, int which) {
+    const ViewSettings s = session_.status().settings;
+    const std::string key = std::to_string(frame.generation) + "/" + std::to_string(frame.spp) +
+                            "/" + std::to_string(s.exposure) + "/" + toneMapName(s.toneMap);
+    {
+        std::lock_guard<std::mutex> lock(pngMutex_);
+        if (pngKey_[which] == key) return png_[which];
+    }
+    const Image& image = which == 0 ? *frame.a : *frame.b;
+    auto png = std::make_shared<const std::string>(encodeDisplayPng(image, s.exposure, s.toneMap));
+    std::lock_guard<std::mutex> lock(pngMutex_);
+    pngKey_[which] = key, png_[which] = png;
+    return png;
 }
 
 void ViewServer::addPageRoutes() {

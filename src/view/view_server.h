@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "view/view_session.h"
@@ -39,6 +40,13 @@ class ViewServer {
     void addImageRoutes();
     void addPageRoutes();
 
+    // The PNG of the last frame shown, per image (A, B): every open page
+    // asks for the same one, which is encoded once.
+    std::shared_ptr<const std::string> displayPng(const Frame& frame, int which);
+
+    std::mutex pngMutex_;
+    std::string pngKey_[2];
+    std::shared_ptr<const std::string> png_[2];
     ViewSession& session_;
     std::unique_ptr<httplib::Server> http_;
     std::atomic<bool> stopRequested_{false};

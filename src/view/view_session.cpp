@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "scene/embree_accel.h"
 #include "scene/loader.h"
 #include "view/accumulation.h"
 
@@ -24,16 +25,21 @@ RenderSettings renderSettingsFor(const ViewSettings& v, const std::string& sampl
     return s;
 }
 
-// The sample count of the next pass. Progressive samplers add a batch that
-// doubles while passes take under 0.1 s and halves when one takes over 0.4 s,
-// so small images do not spend their time between passes and large ones
-// still show a new image a few times a second. Other samplers render each
-// pass afresh: doubling the count keeps the total within twice the last pass.
+// The sample count of the next pass. The first pass is 1 spp, so a restart
+// shows an image at once. Progressive samplers then add a batch that doubles
+// up to kPacketWidth samples, and beyond while passes take under 0.25 s, and
+// halves when one takes over 1 s, but never below kPacketWidth: a pixel's samples are
+// traced as packets of eight and their paths in batches
+// (render/path_integrator.h), and passes of one sample would leave the
+// packets nearly empty — at 512² sixteen 1-spp passes took 1.9 times as long
+// as one 16-spp render (bench/view_interactivity.py). Other samplers render
+// each pass afresh: doubling the count keeps the total within twice the last
+// pass.
 int nextSampleCount(int spp, bool progressive, double lastPassSeconds, int& batch, int maxSpp) {
     if (spp == 0) return 1;
     if (!progressive) return std::min(maxSpp, spp * 2);
-    if (lastPassSeconds < 0.1 && batch < (1 << 20)) batch *= 2;
-    if (lastPassSeconds > 0.4 && batch > 1) batch /= 2;
+    if ((batch < kPacketWidth || lastPassSeconds < 0.25) && batch < (1 << 20)) batch *= 2;
+    if (lastPassSeconds > 1.0 && batch > kPacketWidth) batch /= 2;
     return int(std::min<int64_t>(maxSpp, int64_t(spp) + batch));
 }
 
