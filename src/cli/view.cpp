@@ -42,11 +42,14 @@ class SignalStopper {
             if (signal != SIGUSR1) server.stop();  // SIGUSR1: the server stopped by itself
         });
     }
+    // Ends the watching thread; call before the server it stops is gone.
+    void release() {
+        if (!thread_.joinable()) return;
+        pthread_kill(thread_.native_handle(), SIGUSR1);
+        thread_.join();
+    }
     ~SignalStopper() {
-        if (thread_.joinable()) {
-            pthread_kill(thread_.native_handle(), SIGUSR1);
-            thread_.join();
-        }
+        release();
         pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
     }
 
@@ -88,7 +91,9 @@ void runView(ViewOptions& o) {
         port);
     std::fflush(stdout);
     signals.watch(server);
-    if (!server.listen()) throw std::runtime_error("the HTTP server failed");
+    const bool stopped = server.listen();
+    signals.release();
+    if (!stopped) throw std::runtime_error("the HTTP server failed");
 }
 
 }  // namespace
