@@ -20,6 +20,7 @@ import sys
 import tempfile
 import threading
 import time
+import urllib.error
 import urllib.request
 
 SCENE = ["--scene", "cornell-box", "--size", "512x512", "--max-depth", "8"]
@@ -54,7 +55,11 @@ def accumulate(base, seed, spp, stream):
     def page():
         while not done.is_set():
             request(base + "/api/status")
-            request(base + "/api/image?which=a&format=png")
+            try:
+                request(base + "/api/image?which=a&format=png")
+            except urllib.error.HTTPError as e:  # 404 until the first pass lands
+                if e.code != 404:
+                    raise
             time.sleep(0.2)
 
     streamer = threading.Thread(target=page) if stream else None
