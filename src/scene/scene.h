@@ -77,6 +77,11 @@ struct Mesh {
     int material = 0;
     Vec3f emission{0.0f};
     bool twoSided = false;
+    // A float shading texture (SceneDescription::shadingTextures) cutting the
+    // surface out: hits where it is 0 are ignored, where it is a in (0, 1)
+    // kept with probability a (pbrt-v4's alpha; scene/textures/alpha_cutout.h).
+    // -1: opaque.
+    int alphaTexture = -1;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 

@@ -108,6 +108,14 @@ void validateShadingTextures(const SceneDescription& scene, const std::string& s
             if (t < -1 || (t >= 0 && size_t(t) >= nodes.size()))
                 fail(source, "material '" + m.name + "' refers to shading texture " +
                                  std::to_string(t) + " which does not exist");
+    const auto checkAlpha = [&](const Mesh& mesh) {
+        if (mesh.alphaTexture < -1 ||
+            (mesh.alphaTexture >= 0 && size_t(mesh.alphaTexture) >= nodes.size()))
+            fail(source, "mesh '" + mesh.name + "' has an alpha texture which does not exist");
+    };
+    for (const Mesh& mesh : scene.meshes) checkAlpha(mesh);
+    for (const InstancedObject& object : scene.objects)
+        for (const Mesh& mesh : object.meshes) checkAlpha(mesh);
 }
 
 // `owner` prefixes the mesh's description: "" at the top level, "object 'o' "

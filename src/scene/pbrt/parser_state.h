@@ -56,6 +56,7 @@ class ImportState {
     // scene.shadingTextures; images by file and encoding: into scene.textures.
     std::map<std::string, int> floatTextures, spectrumTextures;
     std::map<std::string, int> textureImages;
+    int shapeAlpha = -1;                 // the alpha texture of the shape being made (-1: opaque)
     std::map<std::string, int> objects;  // name → index into scene.objects
     int currentObject = -1;              // inside ObjectBegin … ObjectEnd
     std::string mainDir;                 // pbrt-v4 resolves files against it
