@@ -136,7 +136,6 @@ void RenderScene::fillInstanced(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInte
         const float len = length(n);
         if (len > 0) si->ns = dot(n, si->ng) < 0 ? -n / len : n / len;
     }
-    si->uv = {b1 + b2, b2};  // pbrt-v4's default corner uvs, as fillInteraction
     if (mesh.uvs) {
         const Vec2f t0 = mesh.uvs[idx[0]], t1 = mesh.uvs[idx[1]], t2 = mesh.uvs[idx[2]];
         si->uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};

@@ -140,9 +140,7 @@ void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
         const float len = length(n);
         if (len > 0) si->ns = dot(n, si->ng) < 0 ? -n / len : n / len;
     }
-    // Without per-vertex uvs, pbrt-v4's Triangle gives its corners (0, 0),
-    // (1, 0), (1, 1).
-    si->uv = {b1 + b2, b2};
+    si->uv = {0, 0};
     if (mesh.uvs) {
         const Vec2f t0 = mesh.uvs[idx[0]], t1 = mesh.uvs[idx[1]], t2 = mesh.uvs[idx[2]];
         si->uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};

@@ -39,7 +39,7 @@ bool alphaKeepsHit(const AlphaCutout& cutout, Vec3f o, Vec3f d, unsigned prim, f
     const float b0 = 1 - b1 - b2;
     const Vec3f p =
         mesh.positions[idx[0]] * b0 + mesh.positions[idx[1]] * b1 + mesh.positions[idx[2]] * b2;
-    Vec2f uv{b1 + b2, b2};  // pbrt-v4's default corners, as RenderScene
+    Vec2f uv{0, 0};  // no uvs: as RenderScene
     if (!mesh.uvs.empty()) {
         const Vec2f t0 = mesh.uvs[idx[0]], t1 = mesh.uvs[idx[1]], t2 = mesh.uvs[idx[2]];
         uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
