@@ -61,6 +61,11 @@ Vec3f imageValue(const ShadingTexture& node, const std::vector<Texture>& images,
 // pbrt-v4's Checkerboard() without a filter footprint: 0 on squares whose
 // integer parts of s and t have equal parity, else 1.
 float checkerboardWeight(Vec2f st) {
+    // Beyond ±2^52 every float is an even integer (and NaN has no square):
+    // clamped so that the conversions below stay defined.
+    constexpr float kLimit = 0x1p52f;
+    if (!std::isfinite(st.x) || !std::isfinite(st.y)) return 0;
+    st = {std::clamp(st.x, -kLimit, kLimit), std::clamp(st.y, -kLimit, kLimit)};
     const bool oddS = (int64_t(std::floor(st.x)) & 1) != 0;
     const bool oddT = (int64_t(std::floor(st.y)) & 1) != 0;
     return oddS != oddT ? 1.0f : 0.0f;
@@ -88,8 +93,14 @@ Vec2f mapTextureCoordinates(const TextureMapping& m, const TextureContext& ctx) 
 
 Vec3f lookupImage(const Texture& image, Vec2f st, TextureWrap wrap, bool pointFilter) {
     if (image.width <= 0 || image.height <= 0) return Vec3f(0.0f);
-    const float x = st.x * float(image.width) - 0.5f, y = st.y * float(image.height) - 0.5f;
-    if (!std::isfinite(x) || !std::isfinite(y)) return Vec3f(0.0f);
+    float x = st.x * float(image.width) - 0.5f, y = st.y * float(image.height) - 0.5f;
+    // Coordinates far outside the image are clamped before becoming texel
+    // indices (a float beyond the int range would be undefined to convert).
+    constexpr float kLimit = 0x1p30f;
+    if (!(std::abs(x) < kLimit && std::abs(y) < kLimit)) {
+        if (!std::isfinite(x) || !std::isfinite(y)) return Vec3f(0.0f);
+        x = std::clamp(x, -kLimit, kLimit), y = std::clamp(y, -kLimit, kLimit);
+    }
     if (pointFilter) return texelAt(image, int(std::lround(x)), int(std::lround(y)), wrap);
     const float fx = std::floor(x), fy = std::floor(y);
     const int xi = int(fx), yi = int(fy);
