@@ -33,6 +33,9 @@ out=$(cd "$out" && pwd)
 # envmap-sun.pbrt's sky is generated, not committed.
 [[ -f $root/scenes/pbrt/sky-sun.pfm ]] ||
     "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_sky_sun.py" "$root/scenes/pbrt/sky-sun.pfm"
+[[ -f $root/scenes/pbrt/textured-bricks.png ]] ||
+    "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_texture_png.py" \
+        "$root/scenes/pbrt/textured-bricks.png"
 trap 'rm -f "$out"/*.part.pfm' EXIT
 
 seconds() { local t0=$1 t1=$2; awk "BEGIN { printf \"%.3f\", $t1 - $t0 }"; }

@@ -38,17 +38,26 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     }
     for (const Material& m : desc_.materials)
         lambertian_.push_back(m.type == MaterialType::Diffuse);
+    for (const Material& m : desc_.materials)
+        textured_.push_back(m.type != MaterialType::Mix &&
+                            (m.albedoTexture >= 0 || m.transmittanceTexture >= 0 ||
+                             m.roughnessTexture >= 0 || m.roughnessVTexture >= 0));
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
     setupInstances();
 }
 
-int RenderScene::mixComponent(int material, Vec3f p, Vec3f dir) const {
+int RenderScene::mixComponent(int material, Vec3f p, Vec3f dir, Vec2f uv) const {
     // Loaders reject cyclic mixes, so this ends.
     while (desc_.materials[size_t(material)].type == MaterialType::Mix) {
         const Material& m = desc_.materials[size_t(material)];
-        if (m.amount <= 0) {
+        const float amount =
+            m.amountTexture < 0
+                ? m.amount
+                : evaluateTexture(desc_.shadingTextures, desc_.textures, m.amountTexture, {uv, p})
+                      .x;
+        if (amount <= 0) {
             material = m.mix[0];
-        } else if (m.amount >= 1) {
+        } else if (amount >= 1) {
             material = m.mix[1];
         } else {
             const uint64_t h = hashValues(
@@ -56,7 +65,7 @@ int RenderScene::mixComponent(int material, Vec3f p, Vec3f dir) const {
                 std::bit_cast<uint32_t>(p.z), std::bit_cast<uint32_t>(dir.x),
                 std::bit_cast<uint32_t>(dir.y), std::bit_cast<uint32_t>(dir.z), uint32_t(material));
             const float u = float(h >> 40) * 0x1p-24f;  // in [0, 1)
-            material = m.amount < u ? m.mix[0] : m.mix[1];
+            material = amount < u ? m.mix[0] : m.mix[1];
         }
     }
     return material;

@@ -67,7 +67,8 @@ class RenderScene {
     // pbrt-v4's MixMaterial::ChooseMaterial, a hash of the point, the
     // direction and the material, so the choice is deterministic per shading
     // point and draws nothing from the sampler. Follows nested mixes.
-    int mixComponent(int material, Vec3f p, Vec3f dir) const;
+    // A mix with an `amount` texture evaluates it at (uv, p).
+    int mixComponent(int material, Vec3f p, Vec3f dir, Vec2f uv = {0, 0}) const;
     // bsdfAt's albedo where isLambertian(si.material).
     Vec3f lambertianAlbedoAt(const SurfaceInteraction& si) const;
     // The ray-origin offset of offsetOrigin.
@@ -79,6 +80,11 @@ class RenderScene {
     bool allLambertian() const { return allLambertian_; }
 
   private:
+    // bsdfAt for a material with textured parameters (textured_): evaluates
+    // them at si (textured_materials.cpp). Out of line, so that untextured
+    // scenes keep the shading path they had.
+    [[gnu::noinline]] Bsdf texturedBsdf(const Material& m, const SurfaceInteraction& si) const;
+    [[gnu::noinline]] Vec3f texturedAlbedo(const Material& m, const SurfaceInteraction& si) const;
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
     // fillInteraction for a hit inside an instance. Out of line and cold, so
     // that scenes without instances keep the hit path they had.
@@ -123,6 +129,7 @@ class RenderScene {
     std::vector<std::vector<MeshHitData>> objectMeshHits_;
     float epsilon_ = 1e-4f;
     std::vector<char> lambertian_;  // per material
+    std::vector<char> textured_;    // per material: some parameter is a texture
     bool allLambertian_ = false;
 };
 
@@ -135,13 +142,19 @@ inline float roughnessV(const Material& m) {
 
 inline Vec3f RenderScene::lambertianAlbedoAt(const SurfaceInteraction& si) const {
     const Material& m = desc_.materials[size_t(si.material)];
-    return m.texture >= 0 ? desc_.textures[size_t(m.texture)].lookup(si.uv) : m.albedo;
+    if (m.texture >= 0) return desc_.textures[size_t(m.texture)].lookup(si.uv);
+    if (m.albedoTexture >= 0) [[unlikely]]
+        return texturedAlbedo(m, si);
+    return m.albedo;
 }
 
 inline Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si, Vec3f dir) const {
-    const Material* m = &desc_.materials[size_t(si.material)];
-    if (m->type == MaterialType::Mix)
-        m = &desc_.materials[size_t(mixComponent(si.material, si.p, dir))];
+    int index = si.material;
+    if (desc_.materials[size_t(index)].type == MaterialType::Mix)
+        index = mixComponent(index, si.p, dir, si.uv);
+    const Material* m = &desc_.materials[size_t(index)];
+    if (textured_[size_t(index)]) [[unlikely]]
+        return texturedBsdf(*m, si);
     switch (m->type) {
         case MaterialType::Diffuse:
             return Bsdf::diffuse(m->texture >= 0 ? desc_.textures[size_t(m->texture)].lookup(si.uv)

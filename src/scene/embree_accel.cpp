@@ -28,7 +28,8 @@ bool shareable(const std::vector<T>& v) {
 
 // The mesh's positions and indices go to Embree as they are when it can share
 // them (no copy: 24 bytes per triangle of a typical mesh), else copied.
-void attachMesh(RTCDevice device, RTCScene scene, const Mesh& mesh) {
+// A mesh with an alpha texture gets filter functions reading `cutout`.
+void attachMesh(RTCDevice device, RTCScene scene, const Mesh& mesh, const AlphaCutout* cutout) {
     static_assert(sizeof(Vec3f) == 3 * sizeof(float));
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
@@ -49,6 +50,7 @@ void attachMesh(RTCDevice device, RTCScene scene, const Mesh& mesh) {
                                             3 * sizeof(unsigned), triangles);
         std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
     }
+    if (cutout) attachAlphaFilter(geom, cutout);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
@@ -83,13 +85,21 @@ bool countEmbreeBytes(void* counter, ssize_t bytes, bool /*post*/) {
 // Meshes (geometry ID = index) and then spheres (one geometry) into `scene`,
 // committed; returns the spheres' geometry ID, or RTC_INVALID_GEOMETRY_ID.
 unsigned buildShapes(RTCDevice device, RTCScene scene, const std::vector<Mesh>& meshes,
-                     const std::vector<Sphere>& spheres) {
+                     const std::vector<Sphere>& spheres, const SceneDescription& desc,
+                     std::vector<std::unique_ptr<AlphaCutout>>& cutouts) {
     // Scene quality LOW asks Embree for its two-level structure, in which each
     // geometry keeps the build quality set on it (HIGH: spatial-split SAH).
     const size_t geometries = meshes.size() + (spheres.empty() ? 0 : 1);
     rtcSetSceneBuildQuality(scene, geometries <= kMaxTwoLevelGeometries ? RTC_BUILD_QUALITY_LOW
                                                                         : RTC_BUILD_QUALITY_HIGH);
-    for (const Mesh& mesh : meshes) attachMesh(device, scene, mesh);
+    for (const Mesh& mesh : meshes) {
+        const AlphaCutout* cutout = nullptr;
+        if (mesh.alphaTexture >= 0) {
+            cutouts.push_back(std::make_unique<AlphaCutout>(AlphaCutout{&mesh, &desc}));
+            cutout = cutouts.back().get();
+        }
+        attachMesh(device, scene, mesh, cutout);
+    }
     return spheres.empty() ? RTC_INVALID_GEOMETRY_ID : attachSpheres(device, scene, spheres);
 }
 
@@ -107,7 +117,7 @@ EmbreeAccel::EmbreeAccel(const SceneDescription& desc) {
     rtcSetDeviceMemoryMonitorFunction(device_, countEmbreeBytes, &embreeBytes_);
     buildObjects(desc);
     scene_ = rtcNewScene(device_);
-    sphereGeomId_ = buildShapes(device_, scene_, desc.meshes, desc.spheres);
+    sphereGeomId_ = buildShapes(device_, scene_, desc.meshes, desc.spheres, desc, cutouts_);
     attachInstances(desc);
     rtcCommitScene(scene_);
     if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
@@ -129,7 +139,7 @@ void EmbreeAccel::buildObjects(const SceneDescription& desc) {
         if (!used[i] || (object.meshes.empty() && object.spheres.empty())) continue;
         objectScenes_[i] = rtcNewScene(device_);
         objectSphereGeomIds_[i] =
-            buildShapes(device_, objectScenes_[i], object.meshes, object.spheres);
+            buildShapes(device_, objectScenes_[i], object.meshes, object.spheres, desc, cutouts_);
         rtcCommitScene(objectScenes_[i]);
     }
 }

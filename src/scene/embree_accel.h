@@ -16,10 +16,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/math.h"
 #include "scene/scene.h"
+#include "scene/textures/alpha_cutout.h"
 
 namespace pathlab {
 
@@ -140,6 +142,9 @@ class EmbreeAccel {
     std::atomic<int64_t> embreeBytes_{0};
     Vec3f boundsMin_, boundsMax_;
     RayRecorder* recorder_ = nullptr;
+    // What the filter functions of meshes with an alpha texture read (stable
+    // addresses: Embree holds pointers to them).
+    std::vector<std::unique_ptr<AlphaCutout>> cutouts_;
 };
 
 }  // namespace pathlab

@@ -11,6 +11,7 @@
 #include "core/math.h"
 #include "scene/environment_image.h"
 #include "scene/punctual_light.h"
+#include "scene/textures/shading_texture.h"
 
 namespace pathlab {
 
@@ -49,6 +50,18 @@ struct Material {
     Vec3f transmittance{0.25f};
     int mix[2] = {-1, -1};  // material indices
     float amount = 0.5f;
+    // Textured parameters: indices into SceneDescription::shadingTextures
+    // evaluated at each hit in place of the constants above (-1: the constant).
+    // albedoTexture: diffuse and diffusetransmission reflectance (clamped to
+    // [0, 1]), a conductor's reflectance (eta 1 and the k that reflects it).
+    int albedoTexture = -1;
+    int transmittanceTexture = -1;  // diffusetransmission
+    float albedoScale = 1;          // diffusetransmission's `scale` on both
+    // Roughness along u and v; with remapRoughness the value r becomes the
+    // GGX alpha √r (pbrt-v4's RoughnessToAlpha), else it is alpha.
+    int roughnessTexture = -1, roughnessVTexture = -1;
+    bool remapRoughness = true;
+    int amountTexture = -1;  // mix
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat
@@ -64,6 +77,11 @@ struct Mesh {
     int material = 0;
     Vec3f emission{0.0f};
     bool twoSided = false;
+    // A float shading texture (SceneDescription::shadingTextures) cutting the
+    // surface out: hits where it is 0 are ignored, where it is a in (0, 1)
+    // kept with probability a (pbrt-v4's alpha; scene/textures/alpha_cutout.h).
+    // -1: opaque.
+    int alphaTexture = -1;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -161,6 +179,7 @@ struct SceneDescription {
     Vec2i resolution{512, 512};  // the scene's preferred image size
     std::vector<Material> materials;
     std::vector<Texture> textures;
+    std::vector<ShadingTexture> shadingTextures;  // what Material's *Texture fields refer to
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
     Vec3f environment{0.0f};                    // constant radiance arriving from every direction

@@ -84,6 +84,40 @@ void validateMaterial(const Material& m, size_t textureCount, size_t materialCou
     }
 }
 
+// The shading textures form a graph whose inputs come before them (so that
+// evaluation ends) and whose images exist; materials refer to existing nodes.
+void validateShadingTextures(const SceneDescription& scene, const std::string& source) {
+    const auto& nodes = scene.shadingTextures;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const ShadingTexture& n = nodes[i];
+        const std::string what = "shading texture " + std::to_string(i);
+        const int inputs = n.kind == TextureKind::Mix ? 3
+                           : n.kind == TextureKind::Checkerboard || n.kind == TextureKind::Scale
+                               ? 2
+                               : 0;
+        for (int k = 0; k < inputs; ++k)
+            if (n.inputs[k] < 0 || size_t(n.inputs[k]) >= i)
+                fail(source, what + " has an input that is not an earlier texture");
+        if (n.kind == TextureKind::Image &&
+            (n.image < 0 || size_t(n.image) >= scene.textures.size()))
+            fail(source, what + " refers to an image which does not exist");
+    }
+    for (const Material& m : scene.materials)
+        for (int t : {m.albedoTexture, m.transmittanceTexture, m.roughnessTexture,
+                      m.roughnessVTexture, m.amountTexture})
+            if (t < -1 || (t >= 0 && size_t(t) >= nodes.size()))
+                fail(source, "material '" + m.name + "' refers to shading texture " +
+                                 std::to_string(t) + " which does not exist");
+    const auto checkAlpha = [&](const Mesh& mesh) {
+        if (mesh.alphaTexture < -1 ||
+            (mesh.alphaTexture >= 0 && size_t(mesh.alphaTexture) >= nodes.size()))
+            fail(source, "mesh '" + mesh.name + "' has an alpha texture which does not exist");
+    };
+    for (const Mesh& mesh : scene.meshes) checkAlpha(mesh);
+    for (const InstancedObject& object : scene.objects)
+        for (const Mesh& mesh : object.meshes) checkAlpha(mesh);
+}
+
 // `owner` prefixes the mesh's description: "" at the top level, "object 'o' "
 // inside an instanced object.
 void validateMesh(const Mesh& mesh, size_t index, size_t materialCount, const std::string& source,
@@ -225,6 +259,7 @@ void validateScene(const SceneDescription& scene, const std::string& source) {
             fail(source, "a texture is empty or has the wrong number of texels");
     for (const Material& m : scene.materials)
         validateMaterial(m, scene.textures.size(), scene.materials.size(), source);
+    validateShadingTextures(scene, source);
     size_t triangles = 0;
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         validateMesh(scene.meshes[i], i, scene.materials.size(), source);

@@ -2,8 +2,8 @@
 // parameters of diffuse, conductor, dielectric, thindielectric,
 // diffusetransmission, mix and interface, and named materials, which may be
 // used before they are defined (pbrt-v4 resolves them when the scene is
-// complete). Float parameters are constants: a texture for one is
-// unsupported (its default under --lenient).
+// complete). Textured parameters refer to named textures
+// (world_texture_classes.cpp), evaluated at each hit by the renderer.
 #include <cmath>
 
 #include "scene/named_spectra.h"
@@ -24,35 +24,41 @@ void markAllUsed(const ParamSet& ps) {
     for (const Param& p : ps.all()) p.used = true;
 }
 
-// A float parameter that may be given as a texture, which stands in for its
-// default.
-float constantFloat(ImportState& st, const ParamSet& ps, const std::string& name, float fallback) {
-    const Param* p = ps.find(name);
-    if (p && p->type == ParamType::Texture) {
-        st.unsupported(p->where, "a texture for '" + name + "'", "its default");
-        return fallback;
-    }
-    return ps.getFloat(name, fallback);
+// A float parameter that may be given as a texture: the texture's index in
+// `texture`, else the constant (or `fallback`).
+struct FloatParam {
+    float value = 0;
+    int texture = -1;
+};
+FloatParam floatOrTexture(ImportState& st, const ParamSet& ps, const std::string& name,
+                          FloatParam fallback) {
+    if (const auto t = floatTextureParam(st, ps, name)) return {0, *t};
+    if (!ps.find(name)) return fallback;
+    return {ps.getFloat(name, fallback.value), -1};
 }
 
 // pbrt-v4's roughness parameters: "uroughness" and "vroughness", each
 // defaulting to "roughness" (0), remapped to GGX alpha by RoughnessToAlpha
-// (alpha = √roughness) unless "remaproughness" is false.
+// (alpha = √roughness) unless "remaproughness" is false. A textured one is
+// remapped at each hit (Material::roughnessTexture).
 struct Alphas {
     float u, v;
 };
-Alphas ggxAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
-    const float r = constantFloat(st, ps, "roughness", 0);
-    const float u = constantFloat(st, ps, "uroughness", r);
-    const float v = constantFloat(st, ps, "vroughness", r);
-    if (u < 0 || v < 0) throw errorAt(where, "roughness must not be negative");
-    if (!ps.getBool("remaproughness", true)) return {u, v};
-    return {std::sqrt(u), std::sqrt(v)};
+Alphas ggxAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
+    const FloatParam r = floatOrTexture(st, ps, "roughness", {});
+    const FloatParam u = floatOrTexture(st, ps, "uroughness", r);
+    const FloatParam v = floatOrTexture(st, ps, "vroughness", r);
+    if (u.value < 0 || v.value < 0) throw errorAt(where, "roughness must not be negative");
+    m.roughnessTexture = u.texture, m.roughnessVTexture = v.texture;
+    m.remapRoughness = ps.getBool("remaproughness", true);
+    if (!m.remapRoughness) return {u.value, v.value};
+    return {std::sqrt(u.value), std::sqrt(v.value)};
 }
 
 void setRoughness(Material& m, Alphas a) {
     m.roughness = a.u;
-    m.roughnessV = a.v == a.u ? -1 : a.v;
+    const bool textured = m.roughnessTexture >= 0 || m.roughnessVTexture >= 0;
+    m.roughnessV = a.v == a.u && !textured ? -1 : a.v;
 }
 
 // A spectrum parameter given by one of pbrt-v4's named metal spectra, else
@@ -89,14 +95,17 @@ float dielectricEta(ImportState& st, const ParamSet& ps, const SourceLocation& w
 
 void conductor(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
     m.type = MaterialType::Conductor;
-    setRoughness(m, ggxAlphas(st, ps, where));
+    setRoughness(m, ggxAlphas(st, ps, where, m));
     if (ps.find("reflectance")) {
         if (ps.find("eta") || ps.find("k"))
             throw errorAt(where, "conductor: give \"reflectance\" or \"eta\" and \"k\", not both");
         // pbrt-v4's alternative: eta 1 and the k that reflects r at normal
         // incidence, k = 2√r / √(1 − r), r clamped to [0, 0.9999].
         Vec3f r(0.5f);
-        if (auto rgb = rgbParam(st, ps, "reflectance")) r = *rgb;
+        if (auto t = spectrumTextureParam(st, ps, "reflectance"))
+            m.albedoTexture = *t;
+        else if (auto rgb = rgbParam(st, ps, "reflectance"))
+            r = *rgb;
         m.eta = Vec3f(1.0f);
         const auto k = [](float rc) {
             rc = std::clamp(rc, 0.0f, 0.9999f);
@@ -117,9 +126,16 @@ void conductor(ImportState& st, const ParamSet& ps, const SourceLocation& where,
 void diffuseTransmission(ImportState& st, const ParamSet& ps, Material& m) {
     m.type = MaterialType::DiffuseTransmission;
     Vec3f r(0.25f), t(0.25f);
-    if (auto rgb = rgbParam(st, ps, "reflectance")) r = *rgb;
-    if (auto rgb = rgbParam(st, ps, "transmittance")) t = *rgb;
+    if (auto tex = spectrumTextureParam(st, ps, "reflectance"))
+        m.albedoTexture = *tex;
+    else if (auto rgb = rgbParam(st, ps, "reflectance"))
+        r = *rgb;
+    if (auto tex = spectrumTextureParam(st, ps, "transmittance"))
+        m.transmittanceTexture = *tex;
+    else if (auto rgb = rgbParam(st, ps, "transmittance"))
+        t = *rgb;
     const float scale = ps.getFloat("scale", 1);
+    m.albedoScale = scale;  // textured ones: at each hit
     // Clamped to [0, 1] as pbrt-v4's DiffuseTransmissionMaterial does.
     const auto clamped = [&](Vec3f c) {
         return Vec3f(std::clamp(scale * c.x, 0.0f, 1.0f), std::clamp(scale * c.y, 0.0f, 1.0f),
@@ -145,7 +161,8 @@ void mix(ImportState& st, const ParamSet& ps, const SourceLocation& where, Mater
             throw errorAt(where, "mix: '" + part + "' is an interface, which cannot be mixed");
         m.mix[i] = it->second;
     }
-    m.amount = constantFloat(st, ps, "amount", 0.5f);
+    const FloatParam amount = floatOrTexture(st, ps, "amount", {0.5f, -1});
+    m.amount = amount.value, m.amountTexture = amount.texture;
     if (!std::isfinite(m.amount)) throw errorAt(where, "mix: amount must be a finite number");
 }
 
@@ -157,12 +174,15 @@ Material makeMaterial(ImportState& st, const std::string& type, const std::strin
     for (const char* bump : {"displacement", "normalmap"})
         if (ps.find(bump)) st.unsupported(where, std::string("material ") + bump, "no bump");
     if (type == "diffuse") {
-        if (auto r = rgbParam(st, ps, "reflectance")) m.albedo = *r;
+        if (auto t = spectrumTextureParam(st, ps, "reflectance"))
+            m.albedoTexture = *t;
+        else if (auto r = rgbParam(st, ps, "reflectance"))
+            m.albedo = *r;
     } else if (type == "dielectric" || type == "thindielectric") {
         m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
         m.albedo = Vec3f(1.0f);
         m.ior = dielectricEta(st, ps, where);
-        setRoughness(m, type == "dielectric" ? ggxAlphas(st, ps, where) : Alphas{0, 0});
+        setRoughness(m, type == "dielectric" ? ggxAlphas(st, ps, where, m) : Alphas{0, 0});
     } else if (type == "conductor") {
         conductor(st, ps, where, m);
     } else if (type == "diffusetransmission") {

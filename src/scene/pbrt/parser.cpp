@@ -394,7 +394,7 @@ void Parser::typedDirective(const Token& t) {
     } else if (d == "Texture") {
         requireWorld(t, true);
         const std::string name = stringArg(d), colorType = stringArg(d), cls = stringArg(d);
-        texture(st_, name, colorType, cls, params(), t.where);
+        texture(st_, name, colorType, cls, params(), t.where, sources_.back().dir);
     } else if (d == "LightSource") {
         requireWorld(t, true);
         const std::string type = stringArg(d);

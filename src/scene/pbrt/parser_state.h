@@ -52,6 +52,11 @@ class ImportState {
         std::string user;
     };
     std::map<std::string, PendingMaterial> pendingMaterials;
+    // Textures by name, float and spectrum apart as in pbrt-v4: index into
+    // scene.shadingTextures; images by file and encoding: into scene.textures.
+    std::map<std::string, int> floatTextures, spectrumTextures;
+    std::map<std::string, int> textureImages;
+    int shapeAlpha = -1;                 // the alpha texture of the shape being made (-1: opaque)
     std::map<std::string, int> objects;  // name → index into scene.objects
     int currentObject = -1;              // inside ObjectBegin … ObjectEnd
     std::string mainDir;                 // pbrt-v4 resolves files against it
@@ -120,7 +125,15 @@ void lightSource(ImportState& st, const std::string& type, const ParamSet& param
 Vec3f areaLightEmission(ImportState& st, const AreaLight& light, const Mesh& mesh,
                         size_t primitives, double shapeArea, const SourceLocation& where);
 void texture(ImportState& st, const std::string& name, const std::string& colorType,
-             const std::string& type, const ParamSet& params, const SourceLocation& where);
+             const std::string& type, const ParamSet& params, const SourceLocation& where,
+             const std::string& includingDir);
+// A material parameter given as "texture NAME": the named texture's index in
+// scene.shadingTextures (InputError when no texture of that kind has that
+// name); nullopt when the parameter is absent or a constant.
+std::optional<int> spectrumTextureParam(ImportState& st, const ParamSet& params,
+                                        const std::string& name);
+std::optional<int> floatTextureParam(ImportState& st, const ParamSet& params,
+                                     const std::string& name);
 
 // RGB of a spectrum-valued parameter (rgb, or blackbody/spectrum where the
 // colour can be had); nullopt when absent.

@@ -139,6 +139,7 @@ void place(ImportState& st, Mesh mesh, const std::string& shapeName, const Sourc
         flipWinding(mesh);
     }
     mesh.material = gs.material >= 0 ? gs.material : st.defaultMaterial();
+    mesh.alphaTexture = st.shapeAlpha;
     mesh.name = shapeName + "@" + std::to_string(where.line);
     if (gs.areaLight) {
         if (st.currentObject >= 0) {
@@ -164,6 +165,19 @@ void place(ImportState& st, Mesh mesh, const std::string& shapeName, const Sourc
         s.meshes.push_back(std::move(mesh));
 }
 
+// pbrt-v4's shape "alpha": a float or a float texture; 1 (the default) is
+// opaque. Anything else becomes a float texture node cutting the shape.
+int shapeAlpha(ImportState& st, const ParamSet& ps) {
+    if (const auto t = floatTextureParam(st, ps, "alpha")) return *t;
+    const float a = ps.getFloat("alpha", 1);
+    if (a >= 1) return -1;
+    ShadingTexture constant;
+    constant.isFloat = true;
+    constant.value = Vec3f(a);
+    st.result.scene.shadingTextures.push_back(constant);
+    return int(st.result.scene.shadingTextures.size()) - 1;
+}
+
 Mesh triangleMesh(const ParamSet& ps, const SourceLocation& where) {
     Mesh m;
     m.positions = ps.getPoint3s("P");
@@ -184,10 +198,7 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
     // Tangents and per-face indices only matter to features pathlab lacks
     // (anisotropic shading frames, per-face textures).
     ps.ignore("S"), ps.ignore("faceIndices");
-    const Param* alpha = ps.find("alpha");
-    if (alpha &&
-        !(alpha->type == ParamType::Float && alpha->numbers.size() == 1 && alpha->numbers[0] == 1))
-        st.unsupported(alpha->where, "alpha on shapes", "an opaque shape");
+    st.shapeAlpha = shapeAlpha(st, ps);
     if (type == "trianglemesh") {
         place(st, triangleMesh(ps, where), type, where);
     } else if (type == "plymesh") {
@@ -213,8 +224,9 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
         const auto scale = similarityScale(st.gs.ctm);
         // An exact sphere has no orientation; a reversed one (inside out, as
         // for a dielectric's eta) is made of triangles, which do.
+        // A cut-out one too (the cut-out filters triangles).
         if (whole && scale && st.gs.ctm.isAffine() && !st.gs.areaLight &&
-            !st.gs.reverseOrientation) {
+            !st.gs.reverseOrientation && st.shapeAlpha < 0) {
             Sphere sp{st.gs.ctm.point({0, 0, 0}), r * *scale,
                       st.gs.material >= 0 ? st.gs.material : st.defaultMaterial()};
             SceneDescription& s = st.result.scene;

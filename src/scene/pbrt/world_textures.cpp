@@ -1,6 +1,6 @@
-// Textures, and the RGB parameters that materials and lights share (pbrt-v4
-// File Format, "Textures"). Textures are not supported yet: each is reported
-// (substituted under --lenient by the defaults of the parameters that use it).
+// The RGB parameters that materials and lights share (pbrt-v4 File Format,
+// "Parameter lists"). A "texture" value is read by the parameters that take
+// textures (world_texture_classes.cpp); elsewhere it is unsupported.
 // Materials: materials.cpp; lights: world_lights.cpp.
 #include <cmath>
 
@@ -26,25 +26,6 @@ std::optional<Vec3f> rgbParam(ImportState& st, const ParamSet& ps, const std::st
     }
     throw errorAt(p->where, "parameter '" + name + "' must be rgb or spectrum, not " +
                                 paramTypeName(p->type));
-}
-
-namespace {
-
-void markAllUsed(const ParamSet& ps) {
-    for (const Param& p : ps.all()) p.used = true;
-}
-
-}  // namespace
-
-void texture(ImportState& st, const std::string& name, const std::string& colorType,
-             const std::string& type, const ParamSet& ps, const SourceLocation& where) {
-    if (colorType != "spectrum" && colorType != "float" && colorType != "color")
-        throw errorAt(where, "Texture '" + name +
-                                 "': type must be \"spectrum\" or \"float\", got '" + colorType +
-                                 "'");
-    markAllUsed(ps);
-    st.unsupported(where, "Texture '" + name + "' (" + type + ")",
-                   "the default of every parameter that uses it");
 }
 
 }  // namespace pathlab::pbrt
