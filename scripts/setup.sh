@@ -23,6 +23,9 @@ PACKAGES=(
   # The Python module (docs/python.md): pybind11 and Python's headers to build
   # it, pytest for its tests, pandas for study tables as DataFrames.
   pybind11-dev python3-dev python3-pytest python3-pandas python3-setuptools
+  # Studies across the ranks of a cluster (docs/cluster.md): Open MPI, its
+  # headers for pathlab and its mpirun for the tests.
+  libopenmpi-dev openmpi-bin
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
