@@ -42,8 +42,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "pathlab: error: %s\n", e.what());
         return 2;
     } catch (const pathlab::InputError& e) {
-        // Empty: another MPI rank of the same study has said what went wrong.
-        if (*e.what()) std::fprintf(stderr, "pathlab: error: %s\n", e.what());
+        std::fprintf(stderr, "pathlab: error: %s\n", e.what());
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pathlab: internal error: %s\n", e.what());

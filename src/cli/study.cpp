@@ -35,7 +35,11 @@ void runStudyCommand(const StudyArgs& a) {
     // which check the options and the spec together, so one rank reports.
     if (launchedByMpiLauncher()) {
         const MpiSession session;
-        runStudyAcrossRanks(loadSpec, options, session);
+        try {
+            runStudyAcrossRanks(loadSpec, options, session);
+        } catch (const StoppedWithAnotherRank&) {
+            // The rank that failed reports it and sets the job's exit code.
+        }
         return;
     }
     requireOneSpecSource(a);

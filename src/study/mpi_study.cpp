@@ -9,6 +9,7 @@
 #include <exception>
 #include <optional>
 
+#include "core/error.h"
 #include "study/files.h"
 #include "study/mpi_coordinator.h"
 #include "study/mpi_messages.h"

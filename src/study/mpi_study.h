@@ -6,18 +6,19 @@
 // own. The cells, images and metrics are those of the single-process study.
 #pragma once
 
+#include <exception>
 #include <functional>
 
-#include "core/error.h"
 #include "study/mpi_session.h"
 #include "study/runner.h"
 
 namespace pathlab {
 
-// What a rank throws when another rank failed and reported why: the CLI
-// exits with code 2 and prints nothing more, so the job says it once.
-struct StoppedWithAnotherRank : InputError {
-    StoppedWithAnotherRank() : InputError("") {}
+// What a rank throws when another rank failed and reports why. That rank
+// alone exits with an error, so the job says it once: a rank that exited with
+// an error first would make mpirun end the job before the report is printed.
+struct StoppedWithAnotherRank : std::exception {
+    const char* what() const noexcept override { return "stopped: another rank failed"; }
 };
 
 // Every rank calls it; rank 0's StudyRun is the study's, the others' are
