@@ -25,6 +25,9 @@ PACKAGES=(
   pybind11-dev python3-dev python3-pytest python3-pandas python3-setuptools
   # `pathlab view`, the browser lab: its HTTP server and the tests' client.
   libcpp-httplib-dev
+  # Studies across the ranks of a cluster (docs/cluster.md): Open MPI, its
+  # headers for pathlab and its mpirun for the tests.
+  libopenmpi-dev openmpi-bin
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi

@@ -5,6 +5,8 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "study/mpi_session.h"
+#include "study/mpi_study.h"
 #include "study/presets.h"
 #include "study/runner.h"
 #include "study/spec.h"
@@ -18,13 +20,31 @@ struct StudyArgs {
     int threads = 0;
 };
 
-void runStudyCommand(const StudyArgs& a) {
+void requireOneSpecSource(const StudyArgs& a) {
     if (a.spec.empty() == a.preset.empty())
         throw InputError("give either a study spec file or --preset NAME (one of them)");
+}
+
+void runStudyCommand(const StudyArgs& a) {
     const StudyOptions options{a.output, a.resume, a.threads};
+    const auto loadSpec = [&] {
+        requireOneSpecSource(a);
+        return a.preset.empty() ? loadStudySpec(a.spec) : presetSpec(a.preset);
+    };
+    // Under mpirun or srun: one study across the ranks (docs/cluster.md),
+    // which check the options and the spec together, so one rank reports.
+    if (launchedByMpiLauncher()) {
+        const MpiSession session;
+        try {
+            runStudyAcrossRanks(loadSpec, options, session);
+        } catch (const StoppedWithAnotherRank&) {
+            // The rank that failed reports it and sets the job's exit code.
+        }
+        return;
+    }
+    requireOneSpecSource(a);
     checkStudyOptions(options);  // before the spec: they are wrong whatever it says
-    const StudySpec spec = a.preset.empty() ? loadStudySpec(a.spec) : presetSpec(a.preset);
-    runStudy(spec, options);
+    runStudy(loadSpec(), options);
 }
 
 }  // namespace
@@ -39,7 +59,9 @@ void addStudyCommand(CLI::App& app) {
         ->required();
     cmd->add_flag("--resume", args->resume,
                   "Continue the study in DIR: skip finished cells, render the rest");
-    cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)")
+    cmd->add_option("--threads", args->threads,
+                    "Worker threads (0 = all cores; under mpirun, per rank: 0 = the host's cores "
+                    "shared by its ranks)")
         ->capture_default_str();
     cmd->callback([args] { runStudyCommand(*args); });
 }

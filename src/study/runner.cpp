@@ -28,44 +28,12 @@
 #include "study/progress.h"
 #include "study/reference_cache.h"
 #include "study/results_store.h"
+#include "study/runner_steps.h"
 #include "study/summary.h"
 
 namespace pathlab {
-namespace {
+namespace study_steps {
 namespace fs = std::filesystem;
-
-// Flip, tone mapping and file writing per cell, in samples per pixel: makes
-// the ETA right for the many cheap low-spp cells.
-constexpr double kCellOverheadSpp = 4.0;
-
-struct SceneJob {
-    StudyScene scene;
-    std::unique_ptr<RenderScene> render;
-    std::string cacheKey;
-    std::string contentHash;  // sceneContentHash
-    // The emitter-edge pixels at the study's resolution (emitterEdgePixels):
-    // every MSE is also reported over them and over the rest.
-    std::vector<uint8_t> edgeMask;
-    int64_t edgePixels = 0;
-};
-
-// An [[external]] table's images, found before the directory is touched,
-// and the reference it names (empty when it uses the study's).
-struct ExternalJob {
-    ExternalRenders renders;
-    Image reference;
-};
-
-// Everything a cell needs besides its key.
-struct StudyContext {
-    const StudySpec& spec;
-    const StudyOptions& options;
-    ResultsStore& store;
-    StudyProgress& progress;
-    StudyRun& run;
-    int threads = 0;  // as used, for the record
-    const std::vector<ExternalJob>& externals;
-};
 
 std::string cellStem(const CellKey& k) {
     return "images/" + k.scene + "/" + k.sampler + "/spp" + std::to_string(k.spp) + "-seed" +
@@ -364,19 +332,6 @@ std::string cellLabel(const CellKey& k) {
            std::to_string(k.seed);
 }
 
-// One render of the study: a cell, or all of a progressive sampler's missing
-// cells at one seed, the smaller spp taken as prefixes of the largest — the
-// same images as rendering each alone (RenderSettings::prefixSpp), for the
-// cost of the largest. A sampler the seed does not randomise (SamplerInfo::
-// randomized, tested) gives every seed the same image, so one render serves
-// all its missing seeds: their cells are the same image and measurements.
-struct CellRender {
-    std::string sampler;
-    int seed = 0;                // the seed rendered: the smallest of `cells`
-    std::vector<int> spp;        // ascending: the render's spp and its prefixes
-    std::vector<CellKey> cells;  // what it completes, each spp of `spp` at least once
-};
-
 std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
     std::vector<CellRender> plan;
     // (sampler, seed or −1 for every seed, spp or −1 for every spp) → plan index
@@ -396,29 +351,21 @@ std::vector<CellRender> planRenders(const std::vector<CellKey>& todo) {
     return plan;
 }
 
-// One cell's measurements and images, ready to be committed as its row.
-struct MeasuredCell {
-    CellKey key;
-    double seconds = 0;
-    uint64_t nonFinite = 0;
-    CellMetrics metrics;
-};
-
 MeasuredCell measureAndWriteCell(const Reference& ref, const CellMeter& meter, const CellKey& key,
                                  const Image& image, double seconds, uint64_t nonFinite,
-                                 const StudyContext& ctx) {
+                                 const CellWriter& ctx) {
     MeasuredCell cell{key, seconds, nonFinite, meter.measure(image)};
-    writeCellImages(ctx.options.dir, key, image, ref, cell.metrics);
+    writeCellImages(ctx.dir, key, image, ref, cell.metrics);
     return cell;
 }
 
 // A cell whose image is another cell's (the same render, another seed of a
 // sampler the seed does not randomise): the same measurements, its own files.
 MeasuredCell copyMeasuredCell(const MeasuredCell& measured, const Reference& ref,
-                              const CellKey& key, const Image& image, const StudyContext& ctx) {
+                              const CellKey& key, const Image& image, const CellWriter& ctx) {
     MeasuredCell cell = measured;
     cell.key = key;
-    writeCellImages(ctx.options.dir, key, image, ref, cell.metrics);
+    writeCellImages(ctx.dir, key, image, ref, cell.metrics);
     return cell;
 }
 
@@ -449,9 +396,10 @@ void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
     ctx.progress.rendered(cellLabel(cell.key), cellWork(ctx.spec, cell.key));
 }
 
-void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& meter,
-                 const CellRender& cells, StudyContext& ctx) {
-    RenderSettings s = studyRenderSettings(ctx.spec, ctx.options.threads);
+std::vector<MeasuredCell> renderCellGroup(const SceneJob& job, const Reference& ref,
+                                          const CellMeter& meter, const CellRender& cells,
+                                          const CellWriter& ctx) {
+    RenderSettings s = studyRenderSettings(ctx.spec, ctx.threads);
     s.sampler = cells.sampler;
     s.samplesPerPixel = cells.spp.back();
     s.prefixSpp.assign(cells.spp.begin(), cells.spp.end() - 1);
@@ -464,8 +412,7 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
     // (much of it is single-threaded); their rows are then committed in spp
     // order, one transaction each, so the store's order does not depend on
     // which finished first.
-    createDirectories(
-        (ctx.options.dir / cellStem({job.scene.name, cells.sampler, 1, 0})).parent_path());
+    createDirectories((ctx.dir / cellStem({job.scene.name, cells.sampler, 1, 0})).parent_path());
     // Each spp is measured once, by its first cell; the cells of other seeds
     // with the same image take those measurements.
     std::vector<const CellKey*> first(images.size(), nullptr);
@@ -487,8 +434,15 @@ void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& met
                                   ? m
                                   : copyMeasuredCell(m, ref, cells.cells[c], p.image, ctx);
     });
+    return measured;
+}
+
+void renderCells(const SceneJob& job, const Reference& ref, const CellMeter& meter,
+                 const CellRender& cells, StudyContext& ctx) {
+    const CellWriter writer{ctx.spec, ctx.options.dir, ctx.options.threads};
     // Rows in the order of the plan: seeds, then spp, as the cells were listed.
-    for (const MeasuredCell& cell : measured) commitCell(cell, ctx);
+    for (const MeasuredCell& cell : renderCellGroup(job, ref, meter, cells, writer))
+        commitCell(cell, ctx);
 }
 
 void measureExternal(const ExternalJob& external, const ExternalTarget& target, StudyContext& ctx) {
@@ -556,10 +510,9 @@ int externalCellCount(const std::vector<ExternalJob>& externals) {
     return n;
 }
 
-void runScene(const SceneJob& job, StudyContext& ctx) {
-    const std::vector<CellKey> cells = sceneCells(ctx.spec, job.scene.name);
+std::vector<CellKey> unfinishedCells(const SceneJob& job, StudyContext& ctx) {
     std::vector<CellKey> todo;
-    for (const CellKey& key : cells) {
+    for (const CellKey& key : sceneCells(ctx.spec, job.scene.name)) {
         if (cellComplete(ctx.options.dir, ctx.store, key)) {
             ctx.progress.skipped(cellWork(ctx.spec, key));
             ++ctx.run.cellsSkipped;
@@ -567,6 +520,11 @@ void runScene(const SceneJob& job, StudyContext& ctx) {
             todo.push_back(key);
         }
     }
+    return todo;
+}
+
+void runScene(const SceneJob& job, StudyContext& ctx) {
+    const std::vector<CellKey> todo = unfinishedCells(job, ctx);
     const Reference ref = obtainReference(job, ctx);
     recordReference(job, ref, ctx);
     const CellMeter meter(ref.image, ref.exposure, ctx.spec, &job.edgeMask);
@@ -593,7 +551,9 @@ void finishStudy(const StudySpec& spec, const StudyOptions& o, ResultsStore& sto
     std::fprintf(stderr, "\n%s", summaryTable(run.analysis, references).c_str());
 }
 
-}  // namespace
+}  // namespace study_steps
+
+using namespace study_steps;
 
 void checkStudyOptions(const StudyOptions& options) {
     if (options.dir.empty()) throw InputError("-o/--output must name the study directory, got ''");

@@ -1,0 +1,193 @@
+// `pathlab study` under mpirun (docs/cluster.md): the same study as one
+// process, bit for bit; a rank killed mid-study, then --resume; bad input.
+#include <dirent.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "core/image.h"
+#include "study_test_util.h"
+
+namespace pathlab {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// mpirun as CI runs it: more ranks than the 2 cores, none bound to a core;
+// each rank gets the test's reference cache.
+std::string mpirunCommand(int ranks) {
+    return std::string(PATHLAB_MPIEXEC) + " --oversubscribe --bind-to none -np " +
+           std::to_string(ranks) + " -x PATHLAB_CACHE " + PATHLAB_BINARY;
+}
+
+testing::CliResult runMpi(int ranks, const std::string& args, const fs::path& dir) {
+    const auto out = dir / "mpi-stdout.txt", err = dir / "mpi-stderr.txt";
+    const std::string cmd = mpirunCommand(ranks) + " " + args + " >" + out.string() + " 2>" +
+                            err.string() + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    testing::CliResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = testing::slurpFile(out);
+    r.err = testing::slurpFile(err);
+    return r;
+}
+
+std::map<CellKey, CellRow> byKey(const std::vector<CellRow>& cells) {
+    std::map<CellKey, CellRow> out;
+    for (const CellRow& c : cells) EXPECT_TRUE(out.emplace(c.key, c).second) << "twice";
+    return out;
+}
+
+void expectSamePixels(const fs::path& a, const fs::path& b) {
+    const Image x = readImage(a.string()), y = readImage(b.string());
+    EXPECT_EQ(x.width, y.width) << a;
+    EXPECT_EQ(x.height, y.height) << a;
+    EXPECT_TRUE(x.rgb == y.rgb) << a << " and " << b << " differ";
+}
+
+const std::vector<std::string> kSamplers = {"standard", "halton-rd", "independent"};
+
+TEST(MpiStudy, ThreeRanksMakeTheSingleProcessStudy) {
+    const auto dir = testing::scratchDirectory("mpi-equal");
+    const auto spec = testing::writeSpec(dir, "tiny.toml", testing::tinySpec());
+    // Separate caches: each run renders its own reference.
+    testing::usePrivateCache(dir / "one");
+    const auto one = testing::runPathlab(
+        "study " + spec.string() + " -o " + (dir / "one").string() + "/study", dir);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    testing::usePrivateCache(dir / "three");
+    const auto three =
+        runMpi(3, "study " + spec.string() + " -o " + (dir / "three/study").string(), dir);
+    ASSERT_EQ(three.exitCode, 0) << three.err;
+    EXPECT_NE(three.err.find("on 3 ranks"), std::string::npos) << three.err;
+    EXPECT_NE(three.err.find("rendering reference"), std::string::npos) << three.err;
+
+    const auto expected = testing::expectedCells("cornell-box", kSamplers, {1, 4, 16}, 2);
+    const auto a = testing::expectCompleteStudy(dir / "one/study", expected, 32, 32);
+    const auto b = testing::expectCompleteStudy(dir / "three/study", expected, 32, 32);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [key, row] : a) {
+        ASSERT_TRUE(b.count(key));
+        testing::expectSameMeasurements(row, b.at(key));
+        EXPECT_EQ(row.flipMedian, b.at(key).flipMedian);
+        EXPECT_EQ(row.mseEdge, b.at(key).mseEdge);
+        EXPECT_EQ(row.bias, b.at(key).bias);
+        expectSamePixels(dir / "one/study" / row.image, dir / "three/study" / b.at(key).image);
+    }
+    expectSamePixels(dir / "one/study/references/cornell-box.exr",
+                     dir / "three/study/references/cornell-box.exr");
+    fs::remove_all(dir);
+}
+
+// The process mpirun started as `rank` (its child whose environment says so).
+pid_t findRank(pid_t mpirun, int rank) {
+    const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        const std::string name = entry.path().filename();
+        if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+        const std::string stat = testing::slurpFile(entry.path() / "stat");
+        const auto close = stat.rfind(')');
+        if (close == std::string::npos) continue;
+        int ppid = 0;
+        char state = 0;
+        if (std::sscanf(stat.c_str() + close + 1, " %c %d", &state, &ppid) != 2) continue;
+        if (ppid != mpirun) continue;
+        const std::string env = testing::slurpFile(entry.path() / "environ");
+        for (size_t at = 0; at < env.size(); at = env.find('\0', at) + 1) {
+            if (env.compare(at, want.size() + 1, want + '\0') == 0) return pid_t(std::stoi(name));
+            if (env.find('\0', at) == std::string::npos) break;
+        }
+    }
+    return 0;
+}
+
+pid_t startMpiStudy(const fs::path& spec, const fs::path& out, const fs::path& log) {
+    // exec: mpirun keeps the shell's PID, the parent of the ranks.
+    const std::string cmd = "exec " + mpirunCommand(3) + " study " + spec.string() + " -o " +
+                            out.string() + " >" + log.string() + " 2>&1 </dev/null";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// 3 samplers × 7 spp × 2 seeds = 42 cells of a 48×48 Cornell box.
+std::string killSpec() {
+    return "name = \"mpi-kill\"\n"
+           "scenes = [\"cornell-box\"]\n"
+           "samplers = [\"standard\", \"halton-owen\", \"independent\"]\n"
+           "spp = [1, 2, 4, 8, 16, 32, 64]\n"
+           "seeds = 2\n"
+           "resolution = [48, 48]\n"
+           "[reference]\nspp = 128\n";
+}
+
+TEST(MpiStudy, RankKilledThenResumeFinishesEveryCellOnce) {
+    const auto dir = testing::scratchDirectory("mpi-kill");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(dir, "kill.toml", killSpec());
+    const auto out = dir / "study";
+    const pid_t mpirun = startMpiStudy(spec, out, dir / "killed.log");
+    ASSERT_GT(mpirun, 0);
+    const auto deadline = Clock::now() + std::chrono::minutes(2);
+    int status = 0;
+    while (testing::rowCount(out) < 1 && Clock::now() < deadline) {
+        ASSERT_EQ(::waitpid(mpirun, &status, WNOHANG), 0)
+            << "mpirun ended early: " << testing::slurpFile(dir / "killed.log");
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    const pid_t worker = findRank(mpirun, 1);
+    ASSERT_GT(worker, 0) << "no rank 1 under mpirun " << mpirun;
+    ::kill(worker, SIGKILL);
+    ::waitpid(mpirun, &status, 0);
+    const std::string log = testing::slurpFile(dir / "killed.log");
+    ASSERT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "finished before the kill";
+    // mpirun names the rank that died; rank 0 names what it was rendering.
+    EXPECT_NE(log.find("process rank 1"), std::string::npos) << log;
+    EXPECT_NE(log.find("rank 1: cornell-box"), std::string::npos) << log;
+    std::map<CellKey, CellRow> before = byKey(testing::readCells(out));
+    ASSERT_LT(before.size(), 42u);
+
+    const auto resumed =
+        runMpi(3, "study " + spec.string() + " -o " + out.string() + " --resume", dir);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_EQ(resumed.err.find("rendering reference"), std::string::npos) << resumed.err;
+    const auto expected = testing::expectedCells(
+        "cornell-box", {"standard", "halton-owen", "independent"}, {1, 2, 4, 8, 16, 32, 64}, 2);
+    const auto after = testing::expectCompleteStudy(out, expected, 48, 48);
+    // A cell finished before the kill is kept, not rendered again.
+    for (const auto& [key, row] : before) {
+        ASSERT_TRUE(after.count(key));
+        EXPECT_EQ(after.at(key).finishedAt, row.finishedAt);
+        EXPECT_EQ(after.at(key).seconds, row.seconds);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(MpiStudy, BadInputSaysSoOnceWithExitCode2) {
+    const auto dir = testing::scratchDirectory("mpi-bad");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(
+        dir, "bad.toml",
+        "name = \"bad\"\nscenes = [\"no-such-scene\"]\nsamplers = [\"standard\"]\nspp = [1]\n"
+        "resolution = [8, 8]\n[reference]\nspp = 4\n");
+    const auto r = runMpi(3, "study " + spec.string() + " -o " + (dir / "out").string(), dir);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    const auto first = r.err.find("pathlab: error:");
+    ASSERT_NE(first, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("pathlab: error:", first + 1), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pathlab
