@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/hash.h"
+#include "render/layered/coated_materials.h"
 #include "render/sphere_hit.h"
 #include "scene/mesh_utils.h"
 
@@ -36,8 +37,10 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              mesh.uvs.empty() ? nullptr : mesh.uvs.data(),
                              lights_->trianglesLights(unsigned(m)), mesh.material});
     }
-    for (const Material& m : desc_.materials)
+    for (const Material& m : desc_.materials) {
         lambertian_.push_back(m.type == MaterialType::Diffuse);
+        layered_.push_back(coatedBsdf(m));
+    }
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
     setupInstances();
 }

@@ -31,6 +31,20 @@ enum class MaterialType {
     DiffuseTransmission,  // Lambertian reflection `albedo` and transmission `transmittance`
     Mix,                  // `mix[0]` or `mix[1]`, the latter with probability `amount`
     Interface,            // no surface: rays pass through (pbrt-v4's interface)
+    CoatedDiffuse,        // `coating` over a Lambertian base of reflectance `albedo`
+    CoatedConductor,      // `coating` over the conductor `eta`, `k`, `roughness`, `roughnessV`
+};
+
+// The dielectric coating and the medium under it of pbrt-v4's coateddiffuse
+// and coatedconductor (render/layered/layered_bsdf.h).
+struct Coating {
+    float eta = 1.5f;
+    float roughness = 0, roughnessV = -1;  // GGX alphas as Material's
+    float thickness = 0.01f;
+    Vec3f albedo{0.0f};  // of the medium; black: no scattering, only absorption
+    float g = 0;
+    int maxDepth = 10;
+    int nSamples = 1;
 };
 
 struct Material {
@@ -49,6 +63,7 @@ struct Material {
     Vec3f transmittance{0.25f};
     int mix[2] = {-1, -1};  // material indices
     float amount = 0.5f;
+    Coating coating{};  // CoatedDiffuse, CoatedConductor
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat
