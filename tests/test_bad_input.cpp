@@ -135,7 +135,7 @@ const BadInput kCases[] = {
      "out.png", "{dir}/bad-sun.json: lights[0].direction: a direction must not be zero"},
     {"pbrt: unsupported feature", "render --scene {dir}/unsupported.pbrt -o {dir}/out.png",
      "out.png",
-     "{dir}/unsupported.pbrt:2:1: material 'coateddiffuse' (or these parameters of it) is not "
+     "{dir}/unsupported.pbrt:2:1: material 'hair' (or these parameters of it) is not "
      "supported (--lenient substitutes diffuse grey)"},
     {"output directory missing", "render --scene cornell-box -o {dir}/no/such/out.png", "",
      "cannot write '{dir}/no/such/out.png': directory '{dir}/no/such' does not exist"},
@@ -315,7 +315,7 @@ class BadInputTable : public ::testing::Test {
         put("no-object.pbrt", "WorldBegin\nObjectInstance \"tree\"\n");
         put("no-coordsys.pbrt", "WorldBegin\nCoordSysTransform \"lamp\"\n");
         put("unbalanced.pbrt", "WorldBegin\nAttributeEnd\n");
-        put("unsupported.pbrt", "WorldBegin\nMaterial \"coateddiffuse\"\n" + tri + "\n");
+        put("unsupported.pbrt", "WorldBegin\nMaterial \"hair\"\n" + tri + "\n");
         put("wide-spot.pbrt", "WorldBegin\nLightSource \"spot\" \"float coneangle\" 200\n" + tri);
         put("negative-point.pbrt", "WorldBegin\nLightSource \"point\" \"rgb I\" [1 -1 1]\n" + tri);
         put("still-sun.pbrt",

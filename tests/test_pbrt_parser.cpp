@@ -265,15 +265,15 @@ TEST(PbrtErrors, OneLineNamingFileLineAndColumn) {
 }
 
 TEST(PbrtLenient, UnsupportedIsAnErrorOrASubstitutionWithAWarning) {
-    const std::string coated =
-        world("Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.3 0.4]\n" + kTriangle);
-    EXPECT_EQ(errorOf(coated),
-              "test.pbrt:3:1: material 'coateddiffuse' (or these parameters of it) is not "
+    const std::string hair =
+        world("Material \"hair\" \"rgb reflectance\" [0.2 0.3 0.4]\n" + kTriangle);
+    EXPECT_EQ(errorOf(hair),
+              "test.pbrt:3:1: material 'hair' (or these parameters of it) is not "
               "supported (--lenient substitutes diffuse grey)");
-    const ImportResult r = load(coated, true);
+    const ImportResult r = load(hair, true);
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_EQ(r.warnings[0],
-              "test.pbrt:3:1: warning: material 'coateddiffuse' (or these parameters of it) is "
+              "test.pbrt:3:1: warning: material 'hair' (or these parameters of it) is "
               "not supported; diffuse grey instead");
     const Material& m = r.scene.materials[size_t(r.scene.meshes[0].material)];
     EXPECT_EQ(m.type, MaterialType::Diffuse);

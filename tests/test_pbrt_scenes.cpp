@@ -161,7 +161,7 @@ TEST_F(PbrtRenderCli, UnsupportedIsOneLineOrLenientWarnings) {
         "s.pbrt",
         "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
         "LightSource \"goniometric\" \"rgb I\" [1 1 1]\nLightSource \"infinite\"\n"
-        "Material \"coateddiffuse\"\nShape \"sphere\"\n");
+        "Material \"hair\"\nShape \"sphere\"\n");
     const std::string out = (dir / "a.exr").string();
     const auto strict = testing::runPathlab("render --scene " + scene + " -o " + out, dir);
     EXPECT_EQ(strict.exitCode, 2);

@@ -310,7 +310,7 @@ TEST(JsonScene, DocumentedExampleLoads) {
     writeImage((dir.path() / "sky.exr").string(), Image(4, 4));
     const SceneDescription s = loadScene(dir.write("example.json", example));
     EXPECT_EQ(s.name, "example");
-    EXPECT_EQ(s.materials.size(), 13u);  // twelve named and the lights' black one
+    EXPECT_EQ(s.materials.size(), 15u);  // fourteen named and the lights' black one
     EXPECT_EQ(s.spheres.size(), 1u);
     EXPECT_EQ(s.punctualLights.size(), 3u);
     EXPECT_EQ(s.environmentMap.width, 4);

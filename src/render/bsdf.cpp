@@ -1,5 +1,7 @@
 #include "render/bsdf.h"
 
+#include "core/hash.h"
+#include "render/layered/layered_bsdf.h"
 #include "render/sampling_routines.h"
 #include "render/transmission_lobes.h"
 
@@ -114,7 +116,35 @@ Bsdf Bsdf::passThrough() {
     return b;
 }
 
+Bsdf Bsdf::layered(const LayeredBsdf* layered) {
+    Bsdf b;
+    b.kind_ = BsdfKind::Layered;
+    b.layered_ = layered;
+    b.specular_ = layered->isSpecular();
+    // Anisotropic when the coating is, or else the base: shadingFrame then
+    // orients the frame as for a conductor.
+    const GgxDistribution& top = layered->coating().ggx;
+    b.alpha_ = top.alphaX, b.alphaY_ = top.alphaY;
+    if (!b.isAnisotropic() && layered->base().isAnisotropic()) b.alpha_ = 0, b.alphaY_ = 1;
+    return b;
+}
+
+namespace {
+// pbrt-v4's seeding of a layered walk without a sampler: a hash of the
+// directions it is asked about.
+PcgWalkNumbers walkFromDirections(Vec3f a, Vec3f b, float c = 0) {
+    return PcgWalkNumbers(hashValues(std::bit_cast<uint32_t>(a.x), std::bit_cast<uint32_t>(a.y),
+                                     std::bit_cast<uint32_t>(a.z), std::bit_cast<uint32_t>(b.x),
+                                     std::bit_cast<uint32_t>(b.y), std::bit_cast<uint32_t>(b.z),
+                                     std::bit_cast<uint32_t>(c)));
+}
+}  // namespace
+
 Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {
+    if (kind_ == BsdfKind::Layered) {
+        auto r = walkFromDirections(wo, wi);
+        return layered_->f(wo, wi, r);
+    }
     if (isSpecular()) return Vec3f(0.0f);
     if (kind_ == BsdfKind::Dielectric) return roughDielectricF(ggx(), eta_.x, wo, wi);
     if (kind_ == BsdfKind::DiffuseTransmission) return diffuseTransmissionF(color_, k_, wo, wi);
@@ -130,6 +160,10 @@ Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {
 }
 
 float Bsdf::pdfNonDiffuse(Vec3f wo, Vec3f wi) const {
+    if (kind_ == BsdfKind::Layered) {
+        auto r = walkFromDirections(wi, wo);
+        return layered_->pdf(wo, wi, r);
+    }
     if (isSpecular()) return 0;
     if (kind_ == BsdfKind::Dielectric) return roughDielectricPdf(ggx(), eta_.x, wo, wi);
     if (kind_ == BsdfKind::DiffuseTransmission) return diffuseTransmissionPdf(color_, k_, wo, wi);
@@ -162,6 +196,10 @@ std::optional<BsdfSample> Bsdf::sampleNonDiffuse(Vec3f wo, float uLobe, Vec2f u)
             return sampleDiffuseTransmission(color_, k_, wo, uLobe, u);
         case BsdfKind::PassThrough:
             return BsdfSample{-wo, Vec3f(1 / absCosTheta(wo)), 1.0f, true};
+        case BsdfKind::Layered: {
+            auto r = walkFromDirections(wo, Vec3f(u.x, u.y, 0), uLobe);
+            return layered_->sample(wo, uLobe, u, r);
+        }
     }
     return std::nullopt;
 }

@@ -17,6 +17,10 @@ struct BsdfSample {
     Vec3f f;
     float pdf = 0;
     bool specular = false;
+    // f and pdf are the sample's throughput pair but pdf is not the density
+    // pdf() gives for wi (a stochastic BSDF's walk, layered_bsdf.h): multiple
+    // importance sampling must ask pdf() instead.
+    bool pdfIsProportional = false;
     // The throughput factor f·|cosθi|/pdf.
     Vec3f weight() const { return f * (absCosTheta(wi) / pdf); }
 };
@@ -30,8 +34,11 @@ enum class BsdfKind {
     Conductor,
     ThinDielectric,
     DiffuseTransmission,
-    PassThrough
+    PassThrough,
+    Layered  // coateddiffuse, coatedconductor: render/layered/layered_bsdf.h
 };
+
+class LayeredBsdf;
 
 class Bsdf {
   public:
@@ -47,6 +54,8 @@ class Bsdf {
     static Bsdf thinDielectric(float eta);
     static Bsdf diffuseTransmission(Vec3f reflectance, Vec3f transmittance);
     static Bsdf passThrough();
+    // The layered BSDF is not copied: the scene owns it (RenderScene).
+    static Bsdf layered(const LayeredBsdf* layered);
 
     BsdfKind kind() const { return kind_; }
     // A Lambertian BSDF's albedo (its reflectance R: f = R/π).
@@ -60,12 +69,16 @@ class Bsdf {
     // where some lobe is not a delta. The integrator draws no others.
     bool usesLobeSample() const {
         return kind_ == BsdfKind::Dielectric || kind_ == BsdfKind::ThinDielectric ||
-               kind_ == BsdfKind::DiffuseTransmission;
+               kind_ == BsdfKind::DiffuseTransmission || kind_ == BsdfKind::Layered;
     }
     bool usesDirectionSample() const { return !isSpecular(); }
     // Roughness differs along the frame's x and y: the frame's orientation
     // about the normal matters (shadingFrame).
     bool isAnisotropic() const { return alpha_ != alphaY_; }
+    // The layered BSDF, whose walk the integrator feeds from the sampler;
+    // null for the other kinds. (Its f, pdf and sample here draw the walk
+    // from PCG32 seeded by the directions, as pbrt-v4 does.)
+    const LayeredBsdf* layered() const { return layered_; }
 
     // The Lambertian case, nearly every vertex of the built-in scenes, is
     // inline so that it is optimised with the integrator around it; the other
@@ -89,6 +102,7 @@ class Bsdf {
     Vec3f color_{0.0f};       // albedo / reflectance
     Vec3f eta_{1.5f}, k_{0};  // eta_.x is the dielectric's index; k_: diffuse transmittance
     float alpha_ = 0, alphaY_ = 0;
+    const LayeredBsdf* layered_ = nullptr;
 };
 
 // Lambertian reflection is two-sided: it scatters into the hemisphere wo lies

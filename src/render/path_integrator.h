@@ -19,6 +19,7 @@
 
 #include "render/diffuse_batch.h"
 #include "render/integrator_settings.h"
+#include "render/layered/walk_dimensions.h"
 #include "render/render_scene.h"
 #include "render/sampling_routines.h"
 #include "sampling/sampler.h"
@@ -38,11 +39,14 @@ template <Sampler S>
 class VertexDimensions {
   public:
     VertexDimensions(S& sampler, Vec2i pixel, int sampleIndex, int depth, PathCounters& counters,
-                     int firstBounce = dims::kFirstBounce)
+                     int firstBounce = dims::kFirstBounce, int maxDepth = 0)
         : sampler_(sampler),
           pixel_(pixel),
           index_(sampleIndex),
           base_(dims::bounceBase(depth, firstBounce)),
+          depth_(depth),
+          firstBounce_(firstBounce),
+          maxDepth_(maxDepth),
           counters_(counters) {}
     float get1D(int offset) {
         seek(offset, 1);
@@ -51,6 +55,11 @@ class VertexDimensions {
     Vec2f get2D(int offset) {
         seek(offset, 2);
         return sampler_.get2D();
+    }
+    // The first dimension of one of a layered BSDF's walks at this vertex, as
+    // an offset from the vertex's fixed block (render/layered/walk_dimensions.h).
+    int walkOffset(dims::Walk walk) const {
+        return dims::walkBase(depth_, walk, maxDepth_, firstBounce_) - base_;
     }
 
   private:
@@ -61,7 +70,7 @@ class VertexDimensions {
     }
     S& sampler_;
     Vec2i pixel_;
-    int index_, base_;
+    int index_, base_, depth_, firstBounce_, maxDepth_;
     int next_ = -1;  // the offset the sampler would produce next
     PathCounters& counters_;
 };
@@ -76,14 +85,21 @@ struct DirectSample {
     float tMax;
     Vec3f contribution;
 };
+// A layered BSDF's walks for f and pdf towards the light sample, from the
+// sampler (null: the BSDF's own, seeded by the directions).
+struct LightWalks {
+    WalkNumbers* f = nullptr;
+    WalkNumbers* pdf = nullptr;
+};
 inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
                                                 const SurfaceInteraction& si, const Frame& frame,
                                                 const Bsdf& bsdf, Vec3f wo, float uChoice,
-                                                Vec2f uLight) {
+                                                Vec2f uLight, LightWalks walks = {}) {
     const auto ls = scene.lights().sample(si.p, si.ns, uChoice, uLight);
     if (!ls) return std::nullopt;
     const Vec3f wi = frame.toLocal(ls->wi);
-    const Vec3f f = bsdf.f(wo, wi) * absCosTheta(wi);
+    const Vec3f f =
+        (walks.f ? bsdf.layered()->f(wo, wi, *walks.f) : bsdf.f(wo, wi)) * absCosTheta(wi);
     if (isBlack(f)) return std::nullopt;
     // The shadow ray runs from the nudged origin to the light point itself, as
     // pbrt-v4's SpawnRayTo: with the unnormalised difference as its direction,
@@ -92,7 +108,10 @@ inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
     // the segment, ε off it, and crosses the light's plane up to ε/cosθ early:
     // grazing samples of a nearby light were blocked by the light.)
     const Vec3f origin = scene.offsetOrigin(si, ls->wi);
-    const float weight = ls->delta ? 1.0f : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
+    const float weight =
+        ls->delta ? 1.0f
+                  : powerHeuristic(ls->pdf, walks.pdf ? bsdf.layered()->pdf(wo, wi, *walks.pdf)
+                                                      : bsdf.pdf(wo, wi));
     const Vec3f contribution = f * ls->radiance * (weight / ls->pdf);
     if (std::isinf(ls->distance)) return DirectSample{origin, ls->wi, ls->distance, contribution};
     return DirectSample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
@@ -174,6 +193,53 @@ struct VertexShading {
     std::optional<BsdfSample> bounce;
     Vec3f wi, origin;  // where bounce is set
 };
+// The numbers of one layered walk at a vertex: the sampler's, at the walk's
+// dimensions, then PCG32 (walk_numbers.h).
+template <Sampler S>
+struct WalkDraw {
+    VertexDimensions<S>* draws;
+    int first;
+    float operator()(int i) const { return draws->get1D(first + i); }
+};
+template <Sampler S>
+SamplerWalkNumbers<WalkDraw<S>> walkNumbers(VertexDimensions<S>& draws, dims::Walk walk) {
+    return SamplerWalkNumbers<WalkDraw<S>>(WalkDraw<S>{&draws, draws.walkOffset(walk)});
+}
+
+// shadeVertex at a layered BSDF, whose walks draw from the vertex's layered
+// block. Its sample's pdf is only proportional to the walk's density (as
+// pbrt-v4's PathIntegrator, multiple importance sampling takes the pdf
+// estimate instead): f is rescaled with it, which leaves the weight as it was.
+template <Sampler S>
+VertexShading shadeLayeredVertex(const RenderScene& scene, VertexDimensions<S>& draws,
+                                 const SurfaceInteraction& si, const Bsdf& bsdf, const Frame& frame,
+                                 Vec3f wo) {
+    const LightSet& lights = scene.lights();
+    const LayeredBsdf& layered = *bsdf.layered();
+    VertexShading v;
+    if (!bsdf.isSpecular()) {
+        const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
+        const Vec2f uLight = draws.get2D(dims::kLightPoint);
+        auto walkF = walkNumbers(draws, dims::Walk::LightF);
+        auto walkPdf = walkNumbers(draws, dims::Walk::LightPdf);
+        v.lightSampled = true;
+        v.direct =
+            sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight, LightWalks{&walkF, &walkPdf});
+    }
+    const float uLobe = draws.get1D(dims::kBsdfLobe);
+    const Vec2f uDirection = draws.get2D(dims::kBsdfDirection);
+    auto walk = walkNumbers(draws, dims::Walk::Sample);
+    v.bounce = layered.sample(wo, uLobe, uDirection, walk);
+    if (v.bounce && v.bounce->pdfIsProportional && !v.bounce->specular) {
+        auto walkPdf = walkNumbers(draws, dims::Walk::SampledPdf);
+        const float pdf = layered.pdf(wo, v.bounce->wi, walkPdf);
+        v.bounce->f *= pdf / v.bounce->pdf;
+        v.bounce->pdf = pdf;
+    }
+    if (v.bounce) v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+    return v;
+}
+
 template <Sampler S>
 VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
                           const SurfaceInteraction& si, Vec3f dir) {
@@ -181,6 +247,7 @@ VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
     const Bsdf bsdf = scene.bsdfAt(si, dir);
     const Frame frame = shadingFrame(bsdf, si.ns);
     const Vec3f wo = frame.toLocal(-dir);
+    if (bsdf.layered()) return shadeLayeredVertex(scene, draws, si, bsdf, frame, wo);
     VertexShading v;
     if (!bsdf.isSpecular()) {
         const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
@@ -220,7 +287,7 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
         if (!found || depth == settings.maxDepth) break;
 
         VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters,
-                                  settings.firstBounce);
+                                  settings.firstBounce, settings.maxDepth);
         const VertexShading v = shadeVertex(scene, draws, si, dir);
         if (v.lightSampled)
             L += beta * (v.direct ? traceShadowRay(scene, *v.direct, counters) : Vec3f(0.0f));
@@ -281,9 +348,10 @@ struct BatchPaths {
 // Returns whether the bounce is specular.
 template <Sampler S>
 bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampleIndex, int depth,
-                    int firstBounce, const SurfaceInteraction& si, Vec3f dir, int j,
-                    DiffuseBatchOutput& out, PathCounters& counters) {
-    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters, firstBounce);
+                    const IntegratorSettings& settings, const SurfaceInteraction& si, Vec3f dir,
+                    int j, DiffuseBatchOutput& out, PathCounters& counters) {
+    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters, settings.firstBounce,
+                              settings.maxDepth);
     const VertexShading v = shadeVertex(scene, draws, si, dir);
     out.shadow[j] = v.direct.has_value();
     if (const auto& d = v.direct) {
@@ -358,9 +426,8 @@ void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live
     for (int j = 0; j < live; ++j) {
         const int k = lane[j];
         paths.specularBounce[k] =
-            j >= lambertian &&
-            shadeLaneAlone(scene, sampler, pixel, index[j], depth, settings.firstBounce, si[k],
-                           paths.dir[k], j, out, counters);
+            j >= lambertian && shadeLaneAlone(scene, sampler, pixel, index[j], depth, settings,
+                                              si[k], paths.dir[k], j, out, counters);
     }
 
     bool blocked[kBatchLanes];

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/hash.h"
+#include "render/layered/coated_materials.h"
 #include "render/sphere_hit.h"
 #include "scene/mesh_utils.h"
 
@@ -36,12 +37,13 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              mesh.uvs.empty() ? nullptr : mesh.uvs.data(),
                              lights_->trianglesLights(unsigned(m)), mesh.material});
     }
-    for (const Material& m : desc_.materials)
+    for (const Material& m : desc_.materials) {
         lambertian_.push_back(m.type == MaterialType::Diffuse);
-    for (const Material& m : desc_.materials)
         textured_.push_back(m.type != MaterialType::Mix &&
                             (m.albedoTexture >= 0 || m.transmittanceTexture >= 0 ||
                              m.roughnessTexture >= 0 || m.roughnessVTexture >= 0));
+        layered_.push_back(coatedBsdf(m));
+    }
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
     setupInstances();
 }

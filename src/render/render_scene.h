@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/bsdf.h"
+#include "render/layered/layered_bsdf.h"
 #include "render/lights.h"
 #include "scene/embree_accel.h"
 #include "scene/scene.h"
@@ -130,6 +131,9 @@ class RenderScene {
     float epsilon_ = 1e-4f;
     std::vector<char> lambertian_;  // per material
     std::vector<char> textured_;    // per material: some parameter is a texture
+    // Per material: the layered BSDF of a coated material (else empty),
+    // built once, which bsdfAt's Bsdf points to.
+    std::vector<std::optional<LayeredBsdf>> layered_;
     bool allLambertian_ = false;
 };
 
@@ -171,6 +175,9 @@ inline Bsdf RenderScene::bsdfAt(const SurfaceInteraction& si, Vec3f dir) const {
             return Bsdf::diffuseTransmission(m->albedo, m->transmittance);
         case MaterialType::Interface:
             return Bsdf::passThrough();
+        case MaterialType::CoatedDiffuse:
+        case MaterialType::CoatedConductor:
+            return Bsdf::layered(&*layered_[size_t(m - desc_.materials.data())]);
         case MaterialType::Mix:
             break;  // resolved above
     }

@@ -191,6 +191,55 @@ void parseRoughness(const Node& n, Material& m) {
     }
 }
 
+// A conductor's complex index: a named "metal", or "eta" and "k".
+void parseConductorIndex(const Node& n, Material& m) {
+    if (n.has("metal")) {
+        if (n.has("eta") || n.has("k")) n.fail("give either 'metal' or 'eta' and 'k', not both");
+        const Node metal = n["metal"];
+        const std::string s = metal.string();
+        const Metal* found = nullptr;
+        for (const Metal& x : kMetals)
+            if (s == x.name) found = &x;
+        if (!found) metal.fail("unknown metal '" + s + "' (gold, silver, copper, aluminium)");
+        m.eta = found->eta, m.k = found->k;
+    } else {
+        m.eta = n["eta"].colour();
+        m.k = n["k"].colour();
+    }
+}
+
+// A whole number from lo to hi.
+int countIn(const Node& n, int lo, int hi) {
+    const float v = n.number();
+    if (v != std::floor(v) || v < float(lo) || v > float(hi))
+        n.fail("must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    return int(v);
+}
+
+// The coating of coateddiffuse and coatedconductor (scene.h's Coating;
+// pbrt-v4's parameters and defaults).
+Coating parseCoating(const Node& n) {
+    n.keys({"ior", "roughness", "roughnessV", "thickness", "albedo", "g", "maxDepth", "samples"});
+    Coating c;
+    if (n.has("ior")) c.eta = n["ior"].positive();
+    Material alphas;
+    alphas.roughness = 0;
+    parseRoughness(n, alphas);
+    c.roughness = alphas.roughness, c.roughnessV = alphas.roughnessV;
+    if (n.has("thickness")) c.thickness = n["thickness"].positive();
+    if (n.has("albedo")) {
+        c.albedo = n["albedo"].colour();
+        if (maxComponent(c.albedo) > 1) n["albedo"].fail("must be at most 1");
+    }
+    if (n.has("g")) {
+        c.g = n["g"].number();
+        if (!(c.g > -1 && c.g < 1)) n["g"].fail("must lie strictly between -1 and 1");
+    }
+    if (n.has("maxDepth")) c.maxDepth = countIn(n["maxDepth"], 1, 4096);
+    if (n.has("samples")) c.nSamples = countIn(n["samples"], 1, 4096);
+    return c;
+}
+
 Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
     Material m;
     m.name = name;
@@ -258,25 +307,28 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
     } else if (type == "conductor") {
         n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV"});
         m.type = MaterialType::Conductor;
-        if (n.has("metal")) {
-            if (n.has("eta") || n.has("k"))
-                n.fail("give either 'metal' or 'eta' and 'k', not both");
-            const Node metal = n["metal"];
-            const std::string s = metal.string();
-            const Metal* found = nullptr;
-            for (const Metal& x : kMetals)
-                if (s == x.name) found = &x;
-            if (!found) metal.fail("unknown metal '" + s + "' (gold, silver, copper, aluminium)");
-            m.eta = found->eta, m.k = found->k;
-        } else {
-            m.eta = n["eta"].colour();
-            m.k = n["k"].colour();
-        }
+        parseConductorIndex(n, m);
         parseRoughness(n, m);
+    } else if (type == "coateddiffuse") {
+        n.keys({"type", "reflectance", "coating"});
+        m.type = MaterialType::CoatedDiffuse;
+        m.albedo = Vec3f(0.5f);
+        if (n.has("reflectance")) {
+            m.albedo = n["reflectance"].colour();
+            if (maxComponent(m.albedo) > 1) n["reflectance"].fail("must be at most 1");
+        }
+        if (n.has("coating")) m.coating = parseCoating(n["coating"]);
+    } else if (type == "coatedconductor") {
+        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV", "coating"});
+        m.type = MaterialType::CoatedConductor;
+        m.roughness = 0;
+        parseConductorIndex(n, m);
+        parseRoughness(n, m);
+        if (n.has("coating")) m.coating = parseCoating(n["coating"]);
     } else {
         n["type"].fail("unknown material type '" + type +
                        "' (diffuse, mirror, dielectric, conductor, thindielectric, "
-                       "diffusetransmission, mix, interface)");
+                       "diffusetransmission, coateddiffuse, coatedconductor, mix, interface)");
     }
     return m;
 }
@@ -676,6 +728,18 @@ Json toJson(Vec3f v) {
     return Json::array({shortest(v.x), shortest(v.y), shortest(v.z)});
 }
 
+Json coatingJson(const Coating& c) {
+    Json o = {{"ior", shortest(c.eta)},
+              {"roughness", shortest(c.roughness)},
+              {"thickness", shortest(c.thickness)},
+              {"albedo", toJson(c.albedo)},
+              {"g", shortest(c.g)},
+              {"maxDepth", c.maxDepth},
+              {"samples", c.nSamples}};
+    if (c.roughnessV >= 0) o["roughnessV"] = shortest(c.roughnessV);
+    return o;
+}
+
 }  // namespace
 
 std::string sceneToJson(const SceneDescription& s) {
@@ -739,6 +803,19 @@ std::string sceneToJson(const SceneDescription& s) {
                 break;
             case MaterialType::Interface:
                 o = {{"type", "interface"}};
+                break;
+            case MaterialType::CoatedDiffuse:
+                o = {{"type", "coateddiffuse"},
+                     {"reflectance", toJson(m.albedo)},
+                     {"coating", coatingJson(m.coating)}};
+                break;
+            case MaterialType::CoatedConductor:
+                o = {{"type", "coatedconductor"},
+                     {"eta", toJson(m.eta)},
+                     {"k", toJson(m.k)},
+                     {"roughness", shortest(m.roughness)},
+                     {"coating", coatingJson(m.coating)}};
+                if (m.roughnessV >= 0) o["roughnessV"] = shortest(m.roughnessV);
                 break;
         }
         mats[name] = o;

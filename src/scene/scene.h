@@ -32,6 +32,20 @@ enum class MaterialType {
     DiffuseTransmission,  // Lambertian reflection `albedo` and transmission `transmittance`
     Mix,                  // `mix[0]` or `mix[1]`, the latter with probability `amount`
     Interface,            // no surface: rays pass through (pbrt-v4's interface)
+    CoatedDiffuse,        // `coating` over a Lambertian base of reflectance `albedo`
+    CoatedConductor,      // `coating` over the conductor `eta`, `k`, `roughness`, `roughnessV`
+};
+
+// The dielectric coating and the medium under it of pbrt-v4's coateddiffuse
+// and coatedconductor (render/layered/layered_bsdf.h).
+struct Coating {
+    float eta = 1.5f;
+    float roughness = 0, roughnessV = -1;  // GGX alphas as Material's
+    float thickness = 0.01f;
+    Vec3f albedo{0.0f};  // of the medium; black: no scattering, only absorption
+    float g = 0;
+    int maxDepth = 10;
+    int nSamples = 1;
 };
 
 struct Material {
@@ -62,6 +76,7 @@ struct Material {
     int roughnessTexture = -1, roughnessVTexture = -1;
     bool remapRoughness = true;
     int amountTexture = -1;  // mix
+    Coating coating{};  // CoatedDiffuse, CoatedConductor
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat

@@ -52,6 +52,25 @@ void validateCamera(const Camera& c, const std::string& source) {
         fail(source, "camera fovY must be in (0, 180) degrees, got " + std::to_string(c.fovY));
 }
 
+void validateCoating(const Material& m, const std::string& what, const std::string& source) {
+    const Coating& c = m.coating;
+    if (m.type == MaterialType::CoatedConductor &&
+        (!nonNegativeFinite(m.eta) || !nonNegativeFinite(m.k)))
+        fail(source, what + " has a negative or non-finite eta or k");
+    if (!(std::isfinite(c.eta) && c.eta > 0))
+        fail(source, what + " has an invalid coating index of refraction");
+    if (!(std::isfinite(c.thickness) && c.thickness > 0))
+        fail(source, what + " has a coating thickness that is not positive");
+    if (!nonNegativeFinite(c.albedo) || maxComponent(c.albedo) > 1)
+        fail(source, what + " has coating albedo " + str(c.albedo) + " outside [0, 1]");
+    if (!(c.g > -1 && c.g < 1)) fail(source, what + " has a coating g outside (-1, 1)");
+    if (c.maxDepth < 1 || c.nSamples < 1)
+        fail(source, what + " has a coating maxDepth or samples below 1");
+    if (!(std::isfinite(c.roughness) && c.roughness >= 0) || !std::isfinite(c.roughnessV) ||
+        !(std::isfinite(m.roughness) && m.roughness >= 0) || !std::isfinite(m.roughnessV))
+        fail(source, what + " has an invalid roughness");
+}
+
 void validateMaterial(const Material& m, size_t textureCount, size_t materialCount,
                       const std::string& source) {
     const std::string what = "material '" + m.name + "'";
@@ -75,6 +94,8 @@ void validateMaterial(const Material& m, size_t textureCount, size_t materialCou
     if (m.type == MaterialType::DiffuseTransmission &&
         (!nonNegativeFinite(m.transmittance) || maxComponent(m.transmittance) > 1))
         fail(source, what + " has transmittance " + str(m.transmittance) + " outside [0, 1]");
+    if (m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::CoatedConductor)
+        validateCoating(m, what, source);
     if (m.type == MaterialType::Mix) {
         for (int c : m.mix)
             if (c < 0 || size_t(c) >= materialCount)

@@ -1,6 +1,7 @@
 // Materials (pbrt-v4 File Format, "Materials"; pbrt-v4's materials.cpp): the
 // parameters of diffuse, conductor, dielectric, thindielectric,
-// diffusetransmission, mix and interface, and named materials, which may be
+// diffusetransmission, coateddiffuse, coatedconductor, mix and interface, and
+// named materials, which may be
 // used before they are defined (pbrt-v4 resolves them when the scene is
 // complete). Textured parameters refer to named textures
 // (world_texture_classes.cpp), evaluated at each hit by the renderer.
@@ -166,6 +167,71 @@ void mix(ImportState& st, const ParamSet& ps, const SourceLocation& where, Mater
     if (!std::isfinite(m.amount)) throw errorAt(where, "mix: amount must be a finite number");
 }
 
+// The coating and the medium under it of coateddiffuse and coatedconductor
+// (pbrt-v4's defaults); `coat` holds the interface's own parameters (the
+// prefixed "interface.*" of coatedconductor).
+Coating coating(ImportState& st, const ParamSet& ps, const ParamSet& coat,
+                const SourceLocation& where) {
+    Coating c;
+    const Alphas a = ggxAlphas(st, coat, where);
+    c.roughness = a.u;
+    c.roughnessV = a.v == a.u ? -1 : a.v;
+    c.eta = dielectricEta(st, coat, where);
+    c.thickness = constantFloat(st, ps, "thickness", 0.01f);
+    c.g = constantFloat(st, ps, "g", 0);
+    if (auto albedo = rgbParam(st, ps, "albedo")) c.albedo = *albedo;
+    c.maxDepth = ps.getInt("maxdepth", 10);
+    c.nSamples = ps.getInt("nsamples", 1);
+    if (!(c.thickness > 0) || !std::isfinite(c.thickness))
+        throw errorAt(where, "coated material: thickness must be positive");
+    if (!(c.g > -1 && c.g < 1)) throw errorAt(where, "coated material: g must lie in (-1, 1)");
+    if (c.maxDepth < 1 || c.nSamples < 1)
+        throw errorAt(where, "coated material: maxdepth and nsamples must be at least 1");
+    if (!(c.albedo.x >= 0 && c.albedo.y >= 0 && c.albedo.z >= 0 && c.albedo.x <= 1 &&
+          c.albedo.y <= 1 && c.albedo.z <= 1))
+        throw errorAt(where, "coated material: albedo must lie in [0, 1]");
+    return c;
+}
+
+// A prefixed parameter set's roughness as GGX alphas, with the material's own
+// (unprefixed) "remaproughness".
+Alphas prefixedAlphas(ImportState& st, const ParamSet& ps, const ParamSet& sub,
+                      const SourceLocation& where) {
+    const Alphas a = ggxAlphas(st, sub, where);
+    if (ps.getBool("remaproughness", true)) return a;
+    return {a.u * a.u, a.v * a.v};
+}
+
+void coatedConductor(ImportState& st, const ParamSet& ps, const SourceLocation& where,
+                     Material& m) {
+    const ParamSet coat = ps.withPrefix("interface."), metal = ps.withPrefix("conductor.");
+    conductor(st, metal, where, m);
+    setRoughness(m, prefixedAlphas(st, ps, metal, where));
+    if (ps.find("reflectance")) {
+        // pbrt-v4's coatedconductor takes "reflectance" unprefixed, in place
+        // of conductor.eta and conductor.k: eta 1 and k = 2√r / √(1 − r).
+        if (metal.find("eta") || metal.find("k"))
+            throw errorAt(where,
+                          "coatedconductor: give \"reflectance\" or \"conductor.eta\" "
+                          "and \"conductor.k\", not both");
+        Vec3f r(0.5f);
+        if (auto rgb = rgbParam(st, ps, "reflectance")) r = *rgb;
+        const auto k = [](float rc) {
+            rc = std::clamp(rc, 0.0f, 0.9999f);
+            return 2 * std::sqrt(rc) / std::sqrt(1 - rc);
+        };
+        m.eta = Vec3f(1.0f);
+        m.k = {k(r.x), k(r.y), k(r.z)};
+    }
+    m.coating = coating(st, ps, coat, where);
+    const Alphas a = prefixedAlphas(st, ps, coat, where);
+    m.coating.roughness = a.u;
+    m.coating.roughnessV = a.v == a.u ? -1 : a.v;
+    m.type = MaterialType::CoatedConductor;
+    st.checkUnused(coat, "Material \"coatedconductor\" (prefixed \"interface.\")");
+    st.checkUnused(metal, "Material \"coatedconductor\" (prefixed \"conductor.\")");
+}
+
 Material makeMaterial(ImportState& st, const std::string& type, const std::string& name,
                       const ParamSet& given, const SourceLocation& where) {
     const ParamSet ps = given.withDefaults(st.gs.attributes["material"]);
@@ -191,6 +257,12 @@ Material makeMaterial(ImportState& st, const std::string& type, const std::strin
         mix(st, ps, where, m);
     } else if (type == "interface") {
         m.type = MaterialType::Interface;
+    } else if (type == "coateddiffuse") {
+        m.type = MaterialType::CoatedDiffuse;
+        if (auto r = rgbParam(st, ps, "reflectance")) m.albedo = *r;
+        m.coating = coating(st, ps, ps, where);
+    } else if (type == "coatedconductor") {
+        coatedConductor(st, ps, where, m);
     } else {
         st.unsupported(where, "material '" + type + "' (or these parameters of it)",
                        "diffuse grey");

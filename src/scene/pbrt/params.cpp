@@ -266,4 +266,17 @@ void ParamSet::merge(const ParamSet& other) {
     }
 }
 
+ParamSet ParamSet::withPrefix(const std::string& prefix) const {
+    ParamSet out;
+    for (const Param& p : params_) {
+        if (p.name.size() <= prefix.size() || p.name.compare(0, prefix.size(), prefix) != 0)
+            continue;
+        p.used = true;
+        out.params_.push_back(p);
+        out.params_.back().name = p.name.substr(prefix.size());
+        out.params_.back().used = false;
+    }
+    return out;
+}
+
 }  // namespace pathlab::pbrt

@@ -81,6 +81,9 @@ class ParamSet {
     // directive): parameters of *this win.
     ParamSet withDefaults(const ParamSet& defaults) const;
     void merge(const ParamSet& other);  // other's parameters replace same-named ones
+    // The parameters named prefix + x, as x (pbrt-v4's "conductor.eta" and
+    // "interface.roughness" of coatedconductor); marks them used here.
+    ParamSet withPrefix(const std::string& prefix) const;
 
   private:
     const Param* lookup(const std::string& name, ParamType type, size_t arity) const;
