@@ -89,7 +89,7 @@ fuzz: setup
 	@scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # Sanitizers: the unit tests under AddressSanitizer + UBSan (all but the
-# browser test), then the renderer's determinism tests under ThreadSanitizer.
+# browser tests), then the renderer's determinism tests under ThreadSanitizer.
 ASAN_BUILD := build/asan
 TSAN_BUILD := build/tsan
 TSAN_TESTS := ^(Determinism\..*|RenderCli\.IdenticalBytesForOneTwoAndEightThreads)$$
@@ -108,7 +108,7 @@ sanitize: setup
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target pathlab pathlab_tests \
 	  $(addsuffix _replay,$(addprefix fuzz_,$(FUZZ_TARGETS)))
 	@cd $(ASAN_BUILD) && UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --output-on-failure -j $(JOBS) -E '^report_browser$$'
+	  ctest --output-on-failure -j $(JOBS) -E '^(report_browser|view_browser)$$'
 	@cmake --build $(TSAN_BUILD) -j $(JOBS) --target pathlab pathlab_tests
 	@cd $(TSAN_BUILD) && TSAN_OPTIONS="halt_on_error=1 suppressions=$(abspath tests/tsan.supp)" \
 	  ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
