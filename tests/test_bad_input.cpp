@@ -147,7 +147,7 @@ const BadInput kCases[] = {
      "The following argument was not expected: --frobnicate"},
     {"unknown command", "frobnicate {dir}/a.exr", "",
      "unknown command 'frobnicate' (commands: render, compare, samplers, points, study, bench, "
-     "report)"},
+     "report, view)"},
     {"images of different sizes", "compare {dir}/a.exr {dir}/small.exr --error-map {dir}/map.png",
      "map.png", "SIZES"},
     {"NaN pixels", "compare {dir}/a.exr {dir}/nan.exr --error-map {dir}/map.png", "map.png", "NAN"},

@@ -90,6 +90,36 @@ TEST(CoatedScenes, PbrtBadCoatingIsOneLine) {
               std::string::npos);
 }
 
+// Coated materials take constant parameters only: a texture there is
+// reported (strict) or dropped for the default (lenient), never half-used.
+TEST(CoatedScenes, PbrtTexturedCoatedParametersAreUnsupported) {
+    const std::string texture = "Texture \"r\" \"float\" \"constant\" \"float value\" 0.3\n";
+    EXPECT_EQ(
+        pbrtError(texture + R"(Material "coatedconductor" "texture conductor.roughness" "r")"),
+        "test.pbrt:3:1: a textured roughness on a coated material is not supported "
+        "(--lenient substitutes roughness 0)");
+    EXPECT_EQ(pbrtError(texture + R"(Material "coateddiffuse" "texture roughness" "r")"),
+              "test.pbrt:3:1: a textured roughness on a coated material is not supported "
+              "(--lenient substitutes roughness 0)");
+    pbrt::ImportOptions lenient;
+    lenient.lenient = true;
+    const pbrt::ImportResult r = pbrt::importPbrtText(
+        "WorldBegin\n" + texture +
+            R"(Material "coatedconductor" "texture conductor.roughness" "r" "texture interface.roughness" "r")" +
+            "\n" + kTriangle + "\n",
+        "test.pbrt", ".", lenient);
+    const Material& m = r.scene.materials[size_t(r.scene.meshes[0].material)];
+    EXPECT_EQ(m.type, MaterialType::CoatedConductor);
+    EXPECT_EQ(m.roughnessTexture, -1);
+    EXPECT_EQ(m.roughnessVTexture, -1);
+    EXPECT_EQ(m.albedoTexture, -1);
+    EXPECT_EQ(m.roughness, 0.0f);
+    EXPECT_EQ(m.coating.roughness, 0.0f);
+    ASSERT_FALSE(r.warnings.empty());
+    for (const std::string& w : r.warnings)
+        EXPECT_NE(w.find("a textured roughness on a coated material"), std::string::npos) << w;
+}
+
 const char* kJson = R"({
   "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "fovY": 40},
   "materials": {

@@ -56,6 +56,28 @@ Alphas ggxAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& wher
     return {std::sqrt(u.value), std::sqrt(v.value)};
 }
 
+// A coated material's constant float parameter (textures are not taken
+// there yet: unsupported, the default under --lenient).
+float constantFloat(ImportState& st, const ParamSet& ps, const std::string& name, float fallback) {
+    const Param* p = ps.find(name);
+    if (p && p->type == ParamType::Texture) {
+        st.unsupported(p->where, "a texture for '" + name + "'", "its default");
+        p->used = true;
+        return fallback;
+    }
+    return ps.getFloat(name, fallback);
+}
+
+// ggxAlphas for a coated material's interface or conductor, whose roughness
+// must be a constant (a texture: unsupported, roughness 0 under --lenient).
+Alphas constantAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
+    Material scratch;
+    const Alphas a = ggxAlphas(st, ps, where, scratch);
+    if (scratch.roughnessTexture >= 0 || scratch.roughnessVTexture >= 0)
+        st.unsupported(where, "a textured roughness on a coated material", "roughness 0");
+    return a;
+}
+
 void setRoughness(Material& m, Alphas a) {
     m.roughness = a.u;
     const bool textured = m.roughnessTexture >= 0 || m.roughnessVTexture >= 0;
@@ -173,7 +195,7 @@ void mix(ImportState& st, const ParamSet& ps, const SourceLocation& where, Mater
 Coating coating(ImportState& st, const ParamSet& ps, const ParamSet& coat,
                 const SourceLocation& where) {
     Coating c;
-    const Alphas a = ggxAlphas(st, coat, where);
+    const Alphas a = constantAlphas(st, coat, where);
     c.roughness = a.u;
     c.roughnessV = a.v == a.u ? -1 : a.v;
     c.eta = dielectricEta(st, coat, where);
@@ -197,7 +219,7 @@ Coating coating(ImportState& st, const ParamSet& ps, const ParamSet& coat,
 // (unprefixed) "remaproughness".
 Alphas prefixedAlphas(ImportState& st, const ParamSet& ps, const ParamSet& sub,
                       const SourceLocation& where) {
-    const Alphas a = ggxAlphas(st, sub, where);
+    const Alphas a = constantAlphas(st, sub, where);
     if (ps.getBool("remaproughness", true)) return a;
     return {a.u * a.u, a.v * a.v};
 }
@@ -206,6 +228,11 @@ void coatedConductor(ImportState& st, const ParamSet& ps, const SourceLocation& 
                      Material& m) {
     const ParamSet coat = ps.withPrefix("interface."), metal = ps.withPrefix("conductor.");
     conductor(st, metal, where, m);
+    if (m.albedoTexture >= 0)
+        st.unsupported(where, "a textured reflectance on a coated material", "reflectance 0.5");
+    // Coated materials take constants only (prefixedAlphas reports a textured
+    // roughness): the layered BSDF is built once per material.
+    m.albedoTexture = m.roughnessTexture = m.roughnessVTexture = -1;
     setRoughness(m, prefixedAlphas(st, ps, metal, where));
     if (ps.find("reflectance")) {
         // pbrt-v4's coatedconductor takes "reflectance" unprefixed, in place
