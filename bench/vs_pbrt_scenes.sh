@@ -55,12 +55,21 @@ PY
 
 printf '%-16s %-24s %-24s %-22s %7s %16s %16s\n' scene "pbrt-v4 mean RGB" "pathlab mean RGB" \
     "difference R G B (%)" FLIP "pbrt paths/s" "pathlab paths/s"
+# The film's x or y resolution (pbrt-v4's default when not given), read with
+# comments stripped: scenes keep alternative resolutions commented out.
+film_resolution() {
+    local value
+    value=$(sed 's/#.*//' "$1" | grep -o "$2"'resolution" *\[* *[0-9]*' | head -n 1 |
+        grep -o '[0-9]*$' || true)
+    echo "${value:-$3}"
+}
+
 for scene in "${scenes[@]}"; do
     name=$(basename "$scene" .pbrt)
     dir=$(dirname "$scene")
     a="$out/$name-pbrt.pfm" b="$out/$name-pathlab.pfm"
-    size=$(grep -o 'xresolution" *\[* *[0-9]*' "$scene" | grep -o '[0-9]*$' || echo 1280)
-    ysize=$(grep -o 'yresolution" *\[* *[0-9]*' "$scene" | grep -o '[0-9]*$' || echo 720)
+    size=$(film_resolution "$scene" x 1280)
+    ysize=$(film_resolution "$scene" y 720)
     paths=$((size * ysize * spp))
     if [[ ! -s $a ]]; then
         t0=$(now)

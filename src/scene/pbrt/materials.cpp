@@ -38,22 +38,37 @@ FloatParam floatOrTexture(ImportState& st, const ParamSet& ps, const std::string
     return {ps.getFloat(name, fallback.value), -1};
 }
 
+// Plain materials evaluate a textured parameter at each hit; coated ones build
+// their layered BSDF once per material, so a texture there is unsupported
+// (its constant default under --lenient).
+enum class TextureUse { PerHit, Unsupported };
+
 // pbrt-v4's roughness parameters: "uroughness" and "vroughness", each
 // defaulting to "roughness" (0), remapped to GGX alpha by RoughnessToAlpha
-// (alpha = √roughness) unless "remaproughness" is false. A textured one is
-// remapped at each hit (Material::roughnessTexture).
-struct Alphas {
-    float u, v;
+// (alpha = √roughness) when `remap` (the material's "remaproughness"). A
+// textured one is remapped at each hit (Material::roughnessTexture).
+struct GgxRoughness {
+    float u = 0, v = 0;                // the constants' GGX alphas
+    int textureU = -1, textureV = -1;  // textured ones
 };
-Alphas ggxAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
+GgxRoughness ggxRoughness(ImportState& st, const ParamSet& ps, bool remap, TextureUse use,
+                          const SourceLocation& where) {
     const FloatParam r = floatOrTexture(st, ps, "roughness", {});
     const FloatParam u = floatOrTexture(st, ps, "uroughness", r);
     const FloatParam v = floatOrTexture(st, ps, "vroughness", r);
     if (u.value < 0 || v.value < 0) throw errorAt(where, "roughness must not be negative");
-    m.roughnessTexture = u.texture, m.roughnessVTexture = v.texture;
-    m.remapRoughness = ps.getBool("remaproughness", true);
-    if (!m.remapRoughness) return {u.value, v.value};
-    return {std::sqrt(u.value), std::sqrt(v.value)};
+    GgxRoughness g;
+    g.u = remap ? std::sqrt(u.value) : u.value;
+    g.v = remap ? std::sqrt(v.value) : v.value;
+    if (use == TextureUse::PerHit)
+        g.textureU = u.texture, g.textureV = v.texture;
+    else if (u.texture >= 0 || v.texture >= 0)
+        st.unsupported(where, "a textured roughness on a coated material", "roughness 0");
+    return g;
+}
+
+bool remapsRoughness(const ParamSet& ps) {
+    return ps.getBool("remaproughness", true);
 }
 
 // A coated material's constant float parameter (textures are not taken
@@ -68,20 +83,12 @@ float constantFloat(ImportState& st, const ParamSet& ps, const std::string& name
     return ps.getFloat(name, fallback);
 }
 
-// ggxAlphas for a coated material's interface or conductor, whose roughness
-// must be a constant (a texture: unsupported, roughness 0 under --lenient).
-Alphas constantAlphas(ImportState& st, const ParamSet& ps, const SourceLocation& where) {
-    Material scratch;
-    const Alphas a = ggxAlphas(st, ps, where, scratch);
-    if (scratch.roughnessTexture >= 0 || scratch.roughnessVTexture >= 0)
-        st.unsupported(where, "a textured roughness on a coated material", "roughness 0");
-    return a;
-}
-
-void setRoughness(Material& m, Alphas a) {
-    m.roughness = a.u;
-    const bool textured = m.roughnessTexture >= 0 || m.roughnessVTexture >= 0;
-    m.roughnessV = a.v == a.u && !textured ? -1 : a.v;
+void setRoughness(Material& m, const GgxRoughness& g, bool remap) {
+    m.roughness = g.u;
+    m.roughnessTexture = g.textureU, m.roughnessVTexture = g.textureV;
+    m.remapRoughness = remap;
+    const bool textured = g.textureU >= 0 || g.textureV >= 0;
+    m.roughnessV = g.v == g.u && !textured ? -1 : g.v;
 }
 
 // A spectrum parameter given by one of pbrt-v4's named metal spectra, else
@@ -116,19 +123,28 @@ float dielectricEta(ImportState& st, const ParamSet& ps, const SourceLocation& w
     return eta;
 }
 
-void conductor(ImportState& st, const ParamSet& ps, const SourceLocation& where, Material& m) {
+// A conductor's parameters from `ps`; `remap` is the material's
+// "remaproughness" (unprefixed also when `ps` holds coatedconductor's
+// "conductor.*" parameters).
+void conductor(ImportState& st, const ParamSet& ps, bool remap, TextureUse use,
+               const SourceLocation& where, Material& m) {
     m.type = MaterialType::Conductor;
-    setRoughness(m, ggxAlphas(st, ps, where, m));
+    setRoughness(m, ggxRoughness(st, ps, remap, use, where), remap);
     if (ps.find("reflectance")) {
         if (ps.find("eta") || ps.find("k"))
             throw errorAt(where, "conductor: give \"reflectance\" or \"eta\" and \"k\", not both");
         // pbrt-v4's alternative: eta 1 and the k that reflects r at normal
         // incidence, k = 2√r / √(1 − r), r clamped to [0, 0.9999].
         Vec3f r(0.5f);
-        if (auto t = spectrumTextureParam(st, ps, "reflectance"))
-            m.albedoTexture = *t;
-        else if (auto rgb = rgbParam(st, ps, "reflectance"))
+        if (auto t = spectrumTextureParam(st, ps, "reflectance")) {
+            if (use == TextureUse::PerHit)
+                m.albedoTexture = *t;
+            else
+                st.unsupported(where, "a textured reflectance on a coated material",
+                               "reflectance 0.5");
+        } else if (auto rgb = rgbParam(st, ps, "reflectance")) {
             r = *rgb;
+        }
         m.eta = Vec3f(1.0f);
         const auto k = [](float rc) {
             rc = std::clamp(rc, 0.0f, 0.9999f);
@@ -191,13 +207,15 @@ void mix(ImportState& st, const ParamSet& ps, const SourceLocation& where, Mater
 
 // The coating and the medium under it of coateddiffuse and coatedconductor
 // (pbrt-v4's defaults); `coat` holds the interface's own parameters (the
-// prefixed "interface.*" of coatedconductor).
+// prefixed "interface.*" of coatedconductor), with the material's own
+// (unprefixed) "remaproughness".
 Coating coating(ImportState& st, const ParamSet& ps, const ParamSet& coat,
                 const SourceLocation& where) {
     Coating c;
-    const Alphas a = constantAlphas(st, coat, where);
-    c.roughness = a.u;
-    c.roughnessV = a.v == a.u ? -1 : a.v;
+    const GgxRoughness g =
+        ggxRoughness(st, coat, remapsRoughness(ps), TextureUse::Unsupported, where);
+    c.roughness = g.u;
+    c.roughnessV = g.v == g.u ? -1 : g.v;
     c.eta = dielectricEta(st, coat, where);
     c.thickness = constantFloat(st, ps, "thickness", 0.01f);
     c.g = constantFloat(st, ps, "g", 0);
@@ -215,25 +233,10 @@ Coating coating(ImportState& st, const ParamSet& ps, const ParamSet& coat,
     return c;
 }
 
-// A prefixed parameter set's roughness as GGX alphas, with the material's own
-// (unprefixed) "remaproughness".
-Alphas prefixedAlphas(ImportState& st, const ParamSet& ps, const ParamSet& sub,
-                      const SourceLocation& where) {
-    const Alphas a = constantAlphas(st, sub, where);
-    if (ps.getBool("remaproughness", true)) return a;
-    return {a.u * a.u, a.v * a.v};
-}
-
 void coatedConductor(ImportState& st, const ParamSet& ps, const SourceLocation& where,
                      Material& m) {
     const ParamSet coat = ps.withPrefix("interface."), metal = ps.withPrefix("conductor.");
-    conductor(st, metal, where, m);
-    if (m.albedoTexture >= 0)
-        st.unsupported(where, "a textured reflectance on a coated material", "reflectance 0.5");
-    // Coated materials take constants only (prefixedAlphas reports a textured
-    // roughness): the layered BSDF is built once per material.
-    m.albedoTexture = m.roughnessTexture = m.roughnessVTexture = -1;
-    setRoughness(m, prefixedAlphas(st, ps, metal, where));
+    conductor(st, metal, remapsRoughness(ps), TextureUse::Unsupported, where, m);
     if (ps.find("reflectance")) {
         // pbrt-v4's coatedconductor takes "reflectance" unprefixed, in place
         // of conductor.eta and conductor.k: eta 1 and k = 2√r / √(1 − r).
@@ -251,9 +254,6 @@ void coatedConductor(ImportState& st, const ParamSet& ps, const SourceLocation& 
         m.k = {k(r.x), k(r.y), k(r.z)};
     }
     m.coating = coating(st, ps, coat, where);
-    const Alphas a = prefixedAlphas(st, ps, coat, where);
-    m.coating.roughness = a.u;
-    m.coating.roughnessV = a.v == a.u ? -1 : a.v;
     m.type = MaterialType::CoatedConductor;
     st.checkUnused(coat, "Material \"coatedconductor\" (prefixed \"interface.\")");
     st.checkUnused(metal, "Material \"coatedconductor\" (prefixed \"conductor.\")");
@@ -275,9 +275,14 @@ Material makeMaterial(ImportState& st, const std::string& type, const std::strin
         m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
         m.albedo = Vec3f(1.0f);
         m.ior = dielectricEta(st, ps, where);
-        setRoughness(m, type == "dielectric" ? ggxAlphas(st, ps, where, m) : Alphas{0, 0});
+        if (type == "dielectric") {
+            const bool remap = remapsRoughness(ps);
+            setRoughness(m, ggxRoughness(st, ps, remap, TextureUse::PerHit, where), remap);
+        } else {
+            setRoughness(m, GgxRoughness{}, true);
+        }
     } else if (type == "conductor") {
-        conductor(st, ps, where, m);
+        conductor(st, ps, remapsRoughness(ps), TextureUse::PerHit, where, m);
     } else if (type == "diffusetransmission") {
         diffuseTransmission(st, ps, m);
     } else if (type == "mix") {
