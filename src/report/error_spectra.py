@@ -107,7 +107,7 @@ def section(study, scene, directory, slug):
             f"the summary count, as a share of the total: {WHITE_NOISE_FRACTION:.3f} for "
             "white noise, less for error spread as blue noise, which looks smoother at the "
             "same MSE. Data: <code>images/…/spp{N}-seed0-spectrum.csv</code>.")
-    return (f'<h3>Screen-space error</h3><figure class="plot"><img src="figures/'
+    return (f'<h3>Screen-space error</h3><figure class="spectra"><img src="figures/'
             f'{base}.svg" alt="{caption}"><figcaption>{caption} · <a href="figures/{base}.svg">'
             f'SVG</a> · <a href="figures/{base}.png">PNG</a></figcaption></figure>'
             f'<p class="note">{note}</p>')
