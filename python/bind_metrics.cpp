@@ -1,4 +1,5 @@
-// pathlab.mse / rmse / relmse / psnr / flip / flip_map: the library calls
+// pathlab.mse / rmse / relmse / psnr / flip / flip_map / error_spectrum /
+// low_frequency_fraction: the library calls
 // `pathlab compare` makes, in its order, so each number equals its --json
 // output to the last bit.
 #include <pybind11/stl.h>
@@ -8,6 +9,7 @@
 
 #include "bindings.h"
 #include "core/error.h"
+#include "metrics/error_spectrum.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 
@@ -71,6 +73,21 @@ py::dict flipDict(const flip::Result& f) {
     return d;
 }
 
+// The spectrum `pathlab compare --error-spectrum` writes, as two arrays.
+py::tuple errorSpectrumArrays(const py::array& reference, const py::array& test) {
+    const ImagePair p = pairOf(reference, test);
+    RadialPowerSpectrum s;
+    {
+        py::gil_scoped_release release;
+        s = errorSpectrum(p.reference, p.test);
+    }
+    py::array_t<double> frequency(py::ssize_t(s.frequency.size()));
+    py::array_t<double> power(py::ssize_t(s.power.size()));
+    std::copy(s.frequency.begin(), s.frequency.end(), frequency.mutable_data());
+    std::copy(s.power.begin(), s.power.end(), power.mutable_data());
+    return py::make_tuple(frequency, power);
+}
+
 }  // namespace
 
 void bindMetrics(py::module_& m) {
@@ -123,6 +140,17 @@ void bindMetrics(py::module_& m) {
             return map;
         },
         ref, test, py::arg("mode"), py::arg("ppd"));
+    m.def("error_spectrum", errorSpectrumArrays, ref, test);
+    m.def(
+        "low_frequency_fraction",
+        [](const py::array& r, const py::array& t) -> std::optional<double> {
+            const ImagePair p = pairOf(r, t);
+            const double f = lowFrequencyErrorFraction(p.reference, p.test);
+            if (std::isnan(f)) return std::nullopt;  // compare --json's null
+            return f;
+        },
+        ref, test);
+    m.attr("LOW_FREQUENCY_LIMIT") = kLowFrequencyLimit;
     m.attr("RELMSE_EPSILON") = kRelMseEpsilon;
 }
 

@@ -11,6 +11,8 @@ PACKAGES=(
   # pbrt-v4 scenes: Loop subdivision through OpenSubdiv; assimp only for the PLY
   # benchmark that measures it beside pathlab's own reader (docs/pbrt-format.md).
   libassimp-dev libosd-dev zlib1g-dev
+  # FFTW 3: the error spectrum's periodograms (`pathlab compare --error-spectrum`).
+  libfftw3-dev
   # The wolf scene, when it must be fetched from Debian's 0ad-data package.
   libarchive-tools
   # The report: figures with matplotlib; its test drives Chromium from Node.

@@ -12,6 +12,7 @@
 
 #include "cli_runner.h"
 #include "core/image.h"
+#include "metrics/error_spectrum.h"
 #include "metrics/image_metrics.h"
 #include "render/emitter_edges.h"
 #include "scene/builtin_scenes.h"
@@ -245,6 +246,39 @@ TEST_F(CompareCli, RegionsSplitTheMseByTheScenesEmitterEdge) {
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_EQ(countLines(bad.err), 1) << bad.err;
     EXPECT_TRUE(bad.out.empty());
+}
+
+// --error-spectrum writes errorSpectrum of the two files as CSV (bit for bit)
+// or as a plot; --json gains its low-frequency fraction.
+TEST_F(CompareCli, ErrorSpectrumAsCsvPngAndJson) {
+    const std::string a = writePattern("a.exr", 40, 30, 0.0f),
+                      b = writePattern("b.exr", 40, 30, 0.05f);
+    const CliResult r = run(a + " " + b + " --json --error-spectrum " + path("s.csv"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const RadialPowerSpectrum expected = errorSpectrum(readImage(a), readImage(b));
+    EXPECT_EQ(testing::slurpFile(path("s.csv")), errorSpectrumCsv(expected));
+    EXPECT_EQ(expected.power.size(), 16u);  // rings 0..30/2
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["low_frequency_fraction"].get<double>(), expected.lowFrequencyFraction());
+    ASSERT_EQ(run(a + " " + b + " --metric mse --error-spectrum " + path("s.PNG")).exitCode, 0);
+    const Image plot = readImage(path("s.PNG"));
+    EXPECT_EQ(plot.width, 480);
+    EXPECT_EQ(plot.height, 320);
+    // Identical images: no error power, the fraction is null.
+    const auto same = nlohmann::json::parse(run(a + " " + a + " --json").out);
+    EXPECT_TRUE(same["low_frequency_fraction"].is_null());
+}
+
+TEST_F(CompareCli, ErrorSpectrumTargetIsCheckedBeforeTheWork) {
+    const std::string a = writePattern("a.exr", 8, 8, 0.0f);
+    for (const std::string target : {path("s.txt"), path("missing/s.csv"), path("s")}) {
+        const CliResult r = run(a + " " + a + " --error-spectrum " + target);
+        EXPECT_EQ(r.exitCode, 2) << target;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(target), std::string::npos) << r.err;
+        EXPECT_TRUE(r.out.empty());
+        EXPECT_FALSE(fs::exists(target));
+    }
 }
 
 TEST_F(CompareCli, BadMetricIsAUsageError) {

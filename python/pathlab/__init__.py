@@ -2,7 +2,8 @@
 run or read studies, with numpy arrays in and out.
 
 Rendering: load_scene, render, render_progressive. Samplers: samplers, points.
-Metrics: mse, rmse, relmse, psnr, flip, flip_stats, flip_map, error_spectrum.
+Metrics: mse, rmse, relmse, psnr, flip, flip_stats, flip_map, error_spectrum,
+low_frequency_fraction.
 Files: read_image, write_image. Studies: run_study, Study.
 
 The functions call the same C++ library as the ``pathlab`` command line, so a
@@ -22,13 +23,14 @@ import os as _os
 
 from . import _pathlab
 from ._pathlab import Scene
-from .spectrum import error_spectrum
+from .spectrum import LOW_FREQUENCY_LIMIT, error_spectrum, low_frequency_fraction
 from .study import Study, run_study
 
 __all__ = [
     "Scene", "load_scene", "builtin_scenes", "render", "render_progressive", "samplers",
     "points", "mse", "rmse", "relmse", "psnr", "flip", "flip_stats", "flip_map", "error_spectrum",
-    "read_image", "write_image", "Study", "run_study", "RELMSE_EPSILON",
+    "low_frequency_fraction", "LOW_FREQUENCY_LIMIT", "read_image", "write_image", "Study",
+    "run_study", "RELMSE_EPSILON",
 ]
 
 RELMSE_EPSILON = _pathlab.RELMSE_EPSILON

@@ -13,6 +13,7 @@
 #include "core/json_null.h"
 #include "metrics/bias.h"
 #include "metrics/error_map.h"
+#include "metrics/error_spectrum.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "render/emitter_edges.h"
@@ -26,6 +27,7 @@ struct CompareArgs {
     std::string metric = "all";
     bool json = false;
     std::string errorMap;
+    std::string errorSpectrum;  // CSV or PNG of the error's radial power spectrum
     bool ldr = false, hdr = false;
     std::string ppd;      // "": the default viewing conditions; else parsePpd
     std::string regions;  // a scene: also split the MSE by its emitter edge
@@ -55,7 +57,8 @@ struct CompareResults {
     double mse = 0, rmse = 0, relmse = 0, psnr = 0;
     Bias bias;
     bool hasPixelMetrics = false;
-    std::optional<RegionMse> regions;  // with --regions
+    std::optional<RegionMse> regions;             // with --regions
+    std::optional<RadialPowerSpectrum> spectrum;  // with --metric all or --error-spectrum
     std::unique_ptr<flip::Result> flip;
 };
 
@@ -75,6 +78,8 @@ CompareResults computeMetrics(const CompareArgs& args, const Image& ref, const I
         out.bias = signedBias(ref, test);
         if (edgeMask) out.regions = meanSquaredErrorByRegion(ref, test, *edgeMask);
     }
+    if (args.metric == "all" || !args.errorSpectrum.empty())
+        out.spectrum = errorSpectrum(ref, test);
     if (wants(args, "flip") || !args.errorMap.empty()) {
         flip::Options options;
         options.mode = args.ldr   ? flip::Mode::Ldr
@@ -120,6 +125,8 @@ void printJson(const CompareArgs& args, const CompareResults& r) {
                          {"relative", orNull<nlohmann::json>(r.bias.relative)},
                          {"channels", r.bias.channels}};
     }
+    if (r.spectrum)
+        j["low_frequency_fraction"] = finiteOrNull(lowFrequencyErrorFraction(*r.spectrum));
     if (r.regions) {
         j["regions"] = {{"scene", args.regions},
                         {"edge_pixels", r.regions->insidePixels},
@@ -145,6 +152,9 @@ void printText(const CompareArgs& args, const CompareResults& r) {
             std::printf("\n");
         }
     }
+    if (r.spectrum)
+        std::printf("lowfreq %.6g  (share of the error's power below %g cycles/pixel)\n",
+                    lowFrequencyErrorFraction(*r.spectrum), kLowFrequencyLimit);
     if (r.regions) {
         const auto value = [](const std::optional<double>& v) {
             char text[32] = "-";
@@ -174,6 +184,7 @@ void runCompare(const CompareArgs& args) {
     const float ppd = args.ppd.empty() ? 0.0f : parsePpd(args.ppd);
     // Fail before the work if the error map cannot be written.
     if (!args.errorMap.empty()) checkWritable(args.errorMap);
+    if (!args.errorSpectrum.empty()) checkErrorSpectrumPath(args.errorSpectrum);
     const Image ref = readImage(args.reference);
     const Image test = readImage(args.test);
     requireComparable(ref, test, args.reference, args.test);
@@ -186,6 +197,7 @@ void runCompare(const CompareArgs& args) {
     if (!args.errorMap.empty())
         writeErrorMap(args.errorMap, results.flip->errorMap, results.flip->width,
                       results.flip->height);
+    if (!args.errorSpectrum.empty()) writeErrorSpectrum(args.errorSpectrum, *results.spectrum);
     if (args.json)
         printJson(args, results);
     else
@@ -197,7 +209,9 @@ void runCompare(const CompareArgs& args) {
 void addCompareCommand(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Image metrics (MSE, RMSE, relMSE, PSNR, bias, FLIP) of TEST against REFERENCE");
+        "compare",
+        "Image metrics (MSE, RMSE, relMSE, PSNR, bias, FLIP, low-frequency error fraction) "
+        "of TEST against REFERENCE");
     cmd->add_option("reference", args->reference, "Reference image (.exr, .png or .pfm)")
         ->required();
     cmd->add_option("test", args->test, "Test image, same size as the reference")->required();
@@ -206,6 +220,9 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_flag("--json", args->json, "Print one JSON object on stdout");
     cmd->add_option("--error-map", args->errorMap,
                     "Write the FLIP error map: .png in the magma colour map, .exr/.pfm raw values");
+    cmd->add_option("--error-spectrum", args->errorSpectrum,
+                    "Write the radially averaged power spectrum of the signed error: .csv "
+                    "(frequency,power) or .png (a log-scale plot)");
     auto* ldr = cmd->add_flag("--ldr", args->ldr, "Force LDR-FLIP (inputs clamped to [0,1])");
     auto* hdr =
         cmd->add_flag("--hdr", args->hdr, "Force HDR-FLIP (exposure range from the reference)");

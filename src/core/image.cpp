@@ -280,6 +280,10 @@ Image readImage(const std::string& path) {
 
 void checkWritable(const std::string& path) {
     imageFormatFromPath(path);
+    checkDirectoryWritable(path);
+}
+
+void checkDirectoryWritable(const std::string& path) {
     std::filesystem::path p(path);
     std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
     std::error_code ec;

@@ -55,6 +55,8 @@ std::string encodeImage(const Image& image, ImageFormat format, float exposure =
 // Fails early (InputError) when `path` cannot be created: missing directory or
 // no permission. Used before long computations so no work is lost.
 void checkWritable(const std::string& path);
+// The same for a file of any kind: only its directory is checked.
+void checkDirectoryWritable(const std::string& path);
 
 float srgbToLinear(float v);
 float linearToSrgb(float v);

@@ -18,6 +18,7 @@ import time
 
 import numpy as np
 
+import error_spectra
 import figures
 from study_data import Study, StudyError
 
@@ -161,7 +162,7 @@ def table_columns(study, scene):
     if study.time_budget():
         cols.append((f"MSE at {fmt(study.time_budget())} s",
                      lambda a: (a.get("error_at_time_budget") or {}).get("mse")))
-    return cols
+    return cols + error_spectra.table_columns(study, scene)
 
 
 def clear_winner(analysis, samplers, spp, best):
@@ -359,7 +360,7 @@ def reference_caption(study, scene, width, height):
     return "Reference: " + ", ".join(parts)
 
 
-def scene_section(study, scene, data, figure_names):
+def scene_section(study, scene, data, figure_names, extra=""):
     s = slug(scene)
     width, height = data["width"], data["height"]
     credit = f'<p class="credit">{esc(WOLF_CREDIT)}</p>' if "wolf" in scene.lower() else ""
@@ -394,6 +395,7 @@ def scene_section(study, scene, data, figure_names):
   <h3>Summary</h3>
   {results_table(study, scene)}
   {regions_section(study, scene, data.get("edge"))}
+  {extra}
 </section>"""
 
 
@@ -500,7 +502,8 @@ def build(study, report_dir, assets, pathlab):
                 "images": scene_images(study, scene, copier)}
         figure_names = figures.convergence_figures(study, scene, figures_dir, s)
         figures.comparison_grid(study, scene, grid_spps, crop, figures_dir, s)
-        sections.append(scene_section(study, scene, data, figure_names))
+        spectra = error_spectra.section(study, scene, figures_dir, s)
+        sections.append(scene_section(study, scene, data, figure_names, spectra))
         scenes_data.append(data)
     if not scenes_data:
         raise StudyError(f"'{study.dir}' has no scene with a reference image yet")

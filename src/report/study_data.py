@@ -187,11 +187,18 @@ class Study:
                 "slope_relmse": _loglog_slope(rel.spp, rel.mean),
                 "mse_ratio_to_independent": _ratios(mse, independent),
                 "time_to_target_seconds": _time_to_target(mse, target_mse),
+                "low_frequency_fraction": _by_spp(
+                    self.series(scene, name, "low_frequency_fraction")),
             }
             for key, value in computed.items():
                 mine.setdefault(key, value)
             out["samplers"][name] = mine
         return out
+
+
+def _by_spp(series):
+    """A series' means keyed by spp as text, as analysis.json keys them."""
+    return {str(n): v for n, v in zip(series.spp, series.mean)}
 
 
 def _loglog_slope(xs, ys):

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <complex>
 
+#include "metrics/power_spectrum.h"
+
 namespace pathlab {
 namespace {
 
@@ -53,33 +55,12 @@ std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int ma
 }
 
 std::vector<double> radialPowerSpectrum(const std::vector<double>& image, int w, int h) {
-    const size_t n = size_t(w) * h;
-    double mean = 0;
-    for (double v : image) mean += v;
-    mean /= double(n);
-    double variance = 0;
-    for (double v : image) variance += (v - mean) * (v - mean);
-    variance /= double(n);
-    // Row DFTs then column DFTs (O(w·h·(w+h)), plenty for textures ≤ 256²).
-    std::vector<Complex> rows(n);
-    for (int y = 0; y < h; ++y)
-        for (int fx = 0; fx < w; ++fx) {
-            Complex s(0, 0);
-            for (int x = 0; x < w; ++x)
-                s += (image[size_t(y) * w + x] - mean) * std::polar(1.0, -2 * M_PI * fx * x / w);
-            rows[size_t(y) * w + fx] = s;
-        }
-    std::vector<double> power(n);
-    for (int fx = 0; fx < w; ++fx)
-        for (int fy = 0; fy < h; ++fy) {
-            Complex s(0, 0);
-            for (int y = 0; y < h; ++y)
-                s += rows[size_t(y) * w + fx] * std::polar(1.0, -2 * M_PI * fy * y / h);
-            // Shift so the zero frequency sits at (w/2, h/2).
-            const int sx = (fx + w / 2) % w, sy = (fy + h / 2) % h;
-            power[size_t(sy) * w + sx] = std::norm(s) / (double(n) * (variance > 0 ? variance : 1));
-        }
-    return ringAverage(power, w, h, w / 2, h / 2, std::min(w, h) / 2);
+    // The FFT periodogram of metrics/power_spectrum.h, over the variance.
+    const RadialPowerSpectrum s = radialPeriodogram(image, w, h);
+    const double variance = s.totalPower > 0 ? s.totalPower : 1.0;
+    std::vector<double> out(s.power.size(), 0.0);
+    for (size_t r = 1; r < out.size(); ++r) out[r] = s.power[r] / variance;
+    return out;
 }
 
 }  // namespace pathlab

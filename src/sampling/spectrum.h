@@ -17,7 +17,9 @@ namespace pathlab {
 std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int maxFrequency);
 
 // Scalar image (row-major w × h): periodogram of the mean-subtracted values
-// divided by their variance, ring-averaged up to the Nyquist radius min(w,h)/2.
+// divided by their variance, ring-averaged up to the Nyquist radius min(w,h)/2
+// (radialPeriodogram in metrics/power_spectrum.h, whose rings it uses);
+// element 0 is 0.
 std::vector<double> radialPowerSpectrum(const std::vector<double>& image, int w, int h);
 
 }  // namespace pathlab

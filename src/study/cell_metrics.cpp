@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "metrics/bias.h"
+#include "metrics/error_spectrum.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 
@@ -44,6 +45,9 @@ CellMetrics measureCell(const Image& reference, const Image& test, float exposur
     m.mse = meanSquaredError(reference, test);
     m.rmse = std::sqrt(m.mse);
     m.bias = signedBias(reference, test).relative;
+    m.errorSpectrum = errorSpectrum(reference, test);
+    if (const double f = m.errorSpectrum.lowFrequencyFraction(); !std::isnan(f))
+        m.lowFrequencyFraction = f;
     if (edgeMask) {
         const RegionMse regions = meanSquaredErrorByRegion(reference, test, *edgeMask);
         m.mseEdge = regions.inside;

@@ -9,6 +9,7 @@
 
 #include "core/image.h"
 #include "metrics/flip.h"
+#include "metrics/power_spectrum.h"
 #include "study/spec.h"
 
 namespace pathlab {
@@ -22,15 +23,20 @@ struct CellMetrics {
     // Relative bias (metrics/bias.h): mean of test − reference over the
     // reference's mean; absent for a reference whose mean is not positive.
     std::optional<double> bias;
-    std::vector<float> flipMap;  // HDR-FLIP per pixel; empty unless FLIP was measured
+    // The share of the signed error's power below a quarter of Nyquist
+    // (metrics/error_spectrum.h); absent for a constant error.
+    std::optional<double> lowFrequencyFraction;
+    RadialPowerSpectrum errorSpectrum;  // written beside the cell's images
+    std::vector<float> flipMap;         // HDR-FLIP per pixel; empty unless FLIP was measured
 };
 
-// MSE, RMSE and the relative bias always, the rest as `spec.metrics` asks. FLIP is HDR-FLIP (the
-// renders are linear and unbounded); PSNR is that of the tone-mapped 8-bit
-// views (both images scaled by 2^exposure, clamped, sRGB encoded, peak 1).
-// `flip` is the reference prepared once for HDR-FLIP (CellMeter below); the
-// values are those of flip::evaluate(reference, test). With `edgeMask` (one
-// entry per pixel, nonzero = emitter edge) the MSE is also split by region.
+// MSE, RMSE, the relative bias and the error spectrum always, the rest as
+// `spec.metrics` asks. FLIP is HDR-FLIP (the renders are linear and
+// unbounded); PSNR is that of the tone-mapped 8-bit views (both images scaled
+// by 2^exposure, clamped, sRGB encoded, peak 1). `flip` is the reference
+// prepared once for HDR-FLIP (CellMeter below); the values are those of
+// flip::evaluate(reference, test). With `edgeMask` (one entry per pixel,
+// nonzero = emitter edge) the MSE is also split by region.
 CellMetrics measureCell(const Image& reference, const Image& test, float exposure,
                         const StudySpec& spec, const flip::PreparedReference* flip = nullptr,
                         const std::vector<uint8_t>* edgeMask = nullptr);

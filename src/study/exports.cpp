@@ -24,6 +24,7 @@ Json cellJson(const CellRow& c) {
             {"flip_median", orNull(c.flipMedian)},
             {"psnr", orNull(c.psnr)},
             {"bias", orNull(c.bias)},
+            {"low_frequency_fraction", orNull(c.lowFrequencyFraction)},
             {"mse_edge", orNull(c.mseEdge)},
             {"mse_rest", orNull(c.mseRest)},
             {"nonfinite", c.nonFinite},

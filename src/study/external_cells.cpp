@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "metrics/error_map.h"
+#include "metrics/error_spectrum.h"
 #include "study/content_hash.h"
 #include "study/files.h"
 
@@ -43,6 +44,7 @@ void writeSeedZeroPictures(const fs::path& dir, const CellKey& key, const Image&
         [&] {
             writeErrorMap(stem + "-relse.png", relativeSquaredErrorMap(target.reference, image),
                           image.width, image.height);
+            writeFileAtomic(stem + "-spectrum.csv", errorSpectrumCsv(m.errorSpectrum));
         });
     writeImage(stem + ".png", image, target.exposure);
 }
@@ -75,6 +77,7 @@ CellRow measureOne(const PendingCell& cell, const ExternalTarget& target, const 
     row.mseEdge = m.mseEdge;
     row.mseRest = m.mseRest;
     row.bias = m.bias;
+    row.lowFrequencyFraction = m.lowFrequencyFraction;
     row.sourceHash = cell.hash;
     return row;
 }

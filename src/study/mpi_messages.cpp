@@ -132,7 +132,8 @@ std::vector<char> encodeMeasured(const std::vector<study_steps::MeasuredCell>& c
         w.put(m.mse);
         w.put(m.rmse);
         for (const std::optional<double>* v :
-             {&m.relmse, &m.flip, &m.flipMedian, &m.psnr, &m.mseEdge, &m.mseRest, &m.bias})
+             {&m.relmse, &m.flip, &m.flipMedian, &m.psnr, &m.mseEdge, &m.mseRest, &m.bias,
+              &m.lowFrequencyFraction})
             w.put(*v);
     }
     return w.take();
@@ -148,8 +149,8 @@ std::vector<study_steps::MeasuredCell> decodeMeasured(const std::vector<char>& b
         c.nonFinite = r.get<uint64_t>();
         m.mse = r.get<double>();
         m.rmse = r.get<double>();
-        for (std::optional<double>* v :
-             {&m.relmse, &m.flip, &m.flipMedian, &m.psnr, &m.mseEdge, &m.mseRest, &m.bias})
+        for (std::optional<double>* v : {&m.relmse, &m.flip, &m.flipMedian, &m.psnr, &m.mseEdge,
+                                         &m.mseRest, &m.bias, &m.lowFrequencyFraction})
             *v = r.getOptional();
     }
     return cells;

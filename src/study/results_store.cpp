@@ -18,6 +18,7 @@ CREATE TABLE IF NOT EXISTS cells (
   seconds REAL, mse REAL, rmse REAL, relmse REAL, flip REAL, flip_median REAL, psnr REAL,
   nonfinite INTEGER, image TEXT, width INTEGER, height INTEGER, max_depth INTEGER,
   threads INTEGER, git_commit TEXT, finished_at TEXT, mse_edge REAL, mse_rest REAL, bias REAL, source_hash TEXT,
+  low_frequency_fraction REAL,
   PRIMARY KEY (scene, sampler, spp, seed));
 CREATE TABLE IF NOT EXISTS "references" (
   scene TEXT PRIMARY KEY, sampler TEXT, spp INTEGER, seconds REAL, cache_key TEXT,
@@ -29,7 +30,7 @@ CREATE TABLE IF NOT EXISTS study (key TEXT PRIMARY KEY, value TEXT);
 constexpr const char* kCellColumns =
     "scene, sampler, spp, seed, seconds, mse, rmse, relmse, flip, flip_median, psnr, "
     "nonfinite, image, width, height, max_depth, threads, git_commit, finished_at, mse_edge, "
-    "mse_rest, bias, source_hash";
+    "mse_rest, bias, source_hash, low_frequency_fraction";
 
 // Columns added since the first schema, with their tables: a study begun by an
 // older pathlab gains them (NULL in its old rows) when it is resumed.
@@ -42,6 +43,7 @@ constexpr AddedColumn kAddedColumns[] = {{"cells", "mse_edge", "REAL"},
                                          {"cells", "mse_rest", "REAL"},
                                          {"cells", "bias", "REAL"},
                                          {"cells", "source_hash", "TEXT"},
+                                         {"cells", "low_frequency_fraction", "REAL"},
                                          {"references", "noise_mse_edge", "REAL"},
                                          {"references", "noise_mse_rest", "REAL"},
                                          {"references", "edge_pixels", "INTEGER"}};
@@ -137,6 +139,7 @@ CellRow readCell(const Statement& s) {
     r.mseRest = s.optionalReal(20);
     r.bias = s.optionalReal(21);
     r.sourceHash = s.text(22);
+    r.lowFrequencyFraction = s.optionalReal(23);
     return r;
 }
 
@@ -196,7 +199,7 @@ void ResultsStore::exec(const char* sql) const {
 void ResultsStore::putCell(const CellRow& r) {
     Statement s(db_,
                 std::string("INSERT OR REPLACE INTO cells (") + kCellColumns +
-                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                    ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 path_);
     s.bind(1, r.key.scene);
     s.bind(2, r.key.sampler);
@@ -224,6 +227,7 @@ void ResultsStore::putCell(const CellRow& r) {
         s.bindNull(23);
     else
         s.bind(23, r.sourceHash);
+    s.bind(24, r.lowFrequencyFraction);
     // A single statement is its own transaction: the row is there whole or not at all.
     s.step();
 }

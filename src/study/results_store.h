@@ -34,6 +34,9 @@ struct CellRow {
     std::optional<double> mseEdge, mseRest;
     // Relative bias (metrics/bias.h); absent in rows of older studies.
     std::optional<double> bias;
+    // Low-frequency error fraction (metrics/error_spectrum.h); absent for a
+    // constant error and in rows of older studies.
+    std::optional<double> lowFrequencyFraction;
     // An external renderer's cell: the content hash of the file it was
     // measured from (`image` is that file), which --resume compares. Empty
     // for the study's own cells.

@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "metrics/error_map.h"
+#include "metrics/error_spectrum.h"
 #include "render/emitter_edges.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
@@ -323,6 +324,7 @@ void writeCellImages(const fs::path& dir, const CellKey& key, const Image& image
         [&] {
             writeErrorMap(stem + "-relse.png", relativeSquaredErrorMap(ref.image, image),
                           image.width, image.height);
+            writeFileAtomic(stem + "-spectrum.csv", errorSpectrumCsv(m.errorSpectrum));
         });
     writeImage(stem + ".png", image, ref.exposure);  // last: cellComplete looks for it
 }
@@ -390,6 +392,7 @@ void commitCell(const MeasuredCell& cell, StudyContext& ctx) {
                 m.mseEdge,
                 m.mseRest,
                 m.bias,
+                m.lowFrequencyFraction,
                 {}};
     ctx.store.putCell(row);
     ++ctx.run.cellsRendered;

@@ -82,6 +82,10 @@ try {
     const plots = await page.$$eval(".plot img", (imgs) => imgs.map((i) => i.naturalWidth));
     assert.equal(plots.length, 4 * scenes, "four plots per scene");
     assert.ok(plots.every((w) => w > 100), `plot widths ${plots}`);
+    // The error spectra at 1 and 4 spp (the study has no 16), one figure per scene.
+    const spectra = await page.$$eval(".spectra img", (imgs) => imgs.map((i) => i.naturalWidth));
+    assert.equal(spectra.length, scenes, "one error-spectrum figure per scene");
+    assert.ok(spectra.every((w) => w > 100), `spectrum figure widths ${spectra}`);
     const rows = await page.locator("table.results tbody tr").count();
     assert.ok(rows >= 2, "the summary table has a row per sampler");
     assert.ok((await page.locator("table.results td.winner").count()) >= 1, "a winner is highlighted");

@@ -98,3 +98,17 @@ def test_error_spectrum_finds_a_sinusoid_and_white_noise_is_flat():
     assert np.nanmean(flat[4:]) == pytest.approx(0.25, rel=0.1)
     with pytest.raises(ValueError, match="shape"):
         pathlab.error_spectrum(zero, zero[:10])
+
+
+def test_error_spectrum_equals_the_cli_csv_and_json(cli, pair):
+    d, ref, test = pair
+    out = json.loads(cli("compare", d / "ref.exr", d / "test.exr", "--json",
+                         "--error-spectrum", d / "spectrum.csv").stdout)
+    rows = (d / "spectrum.csv").read_text().splitlines()
+    assert rows[0] == "frequency,power"
+    written = np.array([[float(v) for v in row.split(",")] for row in rows[1:]])
+    freq, power = pathlab.error_spectrum(ref, test)
+    assert np.array_equal(freq, written[:, 0]) and np.array_equal(power, written[:, 1])
+    assert len(freq) == 32 // 2 + 1
+    assert pathlab.low_frequency_fraction(ref, test) == out["low_frequency_fraction"]
+    assert pathlab.low_frequency_fraction(ref, ref) is None
