@@ -98,5 +98,31 @@ TEST(MpiMessages, TruncatedMessageIsRefused) {
     EXPECT_THROW(decodeReferenceImage(image, back, exposure), std::runtime_error);
 }
 
+TEST(MpiMessages, ReferenceRangesComeBackBitForBit) {
+    EXPECT_EQ(decodeRangeTask(encodeRangeTask({2, 11})), (RangeTask{2, 11}));
+    RangeSums sums;
+    sums.index = 3;
+    sums.seconds = 0.1 + 0.2;
+    sums.sums.first = 192;
+    sums.sums.spp = 64;
+    sums.sums.weighted.resize(2);
+    sums.sums.weighted[1].w2L2[2] = 1.0 / 3.0;
+    const std::vector<std::string> keys = {"a", "b"};
+    int scene = -1;
+    const RangeSums back = decodeRangeResult(encodeRangeResult(1, sums, "b"), scene, keys);
+    EXPECT_EQ(scene, 1);
+    EXPECT_EQ(back.index, 3);
+    EXPECT_TRUE(sameBits(back.seconds, sums.seconds));
+    EXPECT_EQ(back.sums.first, 192);
+    EXPECT_EQ(back.sums.spp, 64);
+    ASSERT_EQ(back.sums.weighted.size(), 2u);
+    EXPECT_TRUE(sameBits(back.sums.weighted[1].w2L2[2], 1.0 / 3.0));
+    // Sums sent for another scene's reference, or for no scene, are refused.
+    EXPECT_THROW(decodeRangeResult(encodeRangeResult(0, sums, "b"), scene, keys),
+                 std::runtime_error);
+    EXPECT_THROW(decodeRangeResult(encodeRangeResult(2, sums, "b"), scene, keys),
+                 std::runtime_error);
+}
+
 }  // namespace
 }  // namespace pathlab

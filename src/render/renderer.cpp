@@ -41,6 +41,7 @@ struct Checkpoints {
     std::vector<int> spp;  // ascending; the last is samplesPerPixel
     std::vector<Image*> image, variance;
     bool timed = false;  // measure the time each prefix takes
+    int sumsFirst = 0;   // the sample the running sums begin at (RunningSums::first)
 };
 
 struct TileResult {
@@ -147,12 +148,12 @@ void traceCameraPacket(const RenderScene& scene, const FrameSetup& frame, S& sam
 template <bool kWeighted>
 using PixelSums = std::conditional_t<kWeighted, WeightedSums, PlainSums>;
 
-// Adds samples firstSample … spp − 1 of the pixel to `sums`.
+// Adds samples firstSample … (the last checkpoint) − 1 of the pixel to `sums`.
 template <bool kWeighted, Sampler S>
 void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, Vec2i pixel,
                  const IntegratorSettings& integrator, const Checkpoints& checkpoints,
                  PixelSums<kWeighted>& sums, int firstSample, TileResult& result) {
-    const int spp = sampler.samplesPerPixel();
+    const int end = checkpoints.spp.back();
     const Clock::time_point start = checkpoints.timed ? Clock::now() : Clock::time_point{};
     const Vec2i at{pixel.x - frame.bounds.min.x, pixel.y - frame.bounds.min.y};  // in the image
     const uint64_t cameraDimensions = frame.camera.hasLens() ? 4 : 2;
@@ -161,7 +162,7 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
     // The pixel's paths go kBatchSamples at a time, a batch ending at each
     // checkpoint so that its time is the time of its samples; their camera
     // rays are traced as packets.
-    for (int i0 = firstSample, count; i0 < spp; i0 += count) {
+    for (int i0 = firstSample, count; i0 < end; i0 += count) {
         count = std::min(kBatchSamples, checkpoints.spp[next] - i0);
         Vec3f origins[kBatchSamples], dirs[kBatchSamples];
         float weights[kBatchSamples];
@@ -194,11 +195,12 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
             if (i0 + k + 1 != checkpoints.spp[next]) continue;
             // Summed in index order either way: bit-identical to a render
             // that stops here.
+            const int summed = i0 + k + 1 - checkpoints.sumsFirst;
             if constexpr (kWeighted)
-                writeWeightedPixel(sums, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                writeWeightedPixel(sums, summed, at, frame.scale, *checkpoints.image[next],
                                    *checkpoints.variance[next]);
             else
-                writePixel(sums, i0 + k + 1, at, frame.scale, *checkpoints.image[next],
+                writePixel(sums, summed, at, frame.scale, *checkpoints.image[next],
                            *checkpoints.variance[next]);
             result.nonFiniteAt[next] += nonFinite;
             if (checkpoints.timed)
@@ -225,11 +227,10 @@ PixelSums<kWeighted>& pixelSums(RunningSums* resume, const PixelBounds& b, int x
 template <bool kWeighted, Sampler S>
 TileResult renderTile(const RenderScene& scene, const FrameSetup& frame, S& sampler,
                       const Tile& tile, const IntegratorSettings& integrator,
-                      const Checkpoints& checkpoints, RunningSums* resume) {
+                      const Checkpoints& checkpoints, RunningSums* resume, int firstSample) {
     TileResult result;
     result.nonFiniteAt.assign(checkpoints.spp.size(), 0);
     result.secondsAt.assign(checkpoints.spp.size(), 0.0);
-    const int firstSample = resume ? resume->spp : 0;
     PixelSums<kWeighted> fresh;
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x)
@@ -302,7 +303,18 @@ void validateRenderSettings(const RenderSettings& s) {
     if (!s.prefixSpp.empty() && !info.progressive)
         throw InputError("sampler '" + s.sampler +
                          "' is not progressive: its first samples are not a render of fewer");
-    if (s.resume && s.resume->spp > 0) {
+    if (s.sampleRange) {
+        const SampleRange& r = *s.sampleRange;
+        if (r.first < 0 || r.first >= r.end || r.end > s.samplesPerPixel)
+            throw InputError("a sample range must lie within 0…" +
+                             std::to_string(s.samplesPerPixel) + " and hold samples, got " +
+                             std::to_string(r.first) + "…" + std::to_string(r.end));
+        if (!s.resume || s.resume->spp != 0 || !s.prefixSpp.empty())
+            throw InputError(
+                "a sample range is rendered into empty running sums, without prefixes");
+    } else if (s.resume && s.resume->spp > 0) {
+        if (s.resume->first != 0)
+            throw InputError("the sums of a sample range cannot be continued");
         if (!info.progressive)
             throw InputError("sampler '" + s.sampler + "' is not progressive: a render of " +
                              std::to_string(s.samplesPerPixel) + " spp cannot continue one of " +
@@ -343,11 +355,15 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         checkpoints.image.push_back(&p.image);
         checkpoints.variance.push_back(&p.varianceOfMean);
     }
-    checkpoints.spp.push_back(settings.samplesPerPixel);
+    // A sample range ends early; its sums start afresh at its first sample.
+    const std::optional<SampleRange>& range = settings.sampleRange;
+    RunningSums* const resume = settings.resume;
+    const int firstSample = range ? range->first : resume ? resume->spp : 0;
+    checkpoints.spp.push_back(range ? range->end : settings.samplesPerPixel);
+    checkpoints.sumsFirst = range ? range->first : 0;
     checkpoints.image.push_back(&out.image);
     checkpoints.variance.push_back(&out.varianceOfMean);
     checkpoints.timed = !out.prefixes.empty();
-    RunningSums* const resume = settings.resume;
     if (resume) prepareRunningSums(*resume, size_t(w) * size_t(h), weighted);
 
     std::vector<TileResult> results(tiles.size());
@@ -373,9 +389,9 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
             results[t] = std::visit(
                 [&](auto& s) {
                     return weighted ? renderTile<true>(scene, frame, s, tiles[t], integrator,
-                                                       checkpoints, resume)
+                                                       checkpoints, resume, firstSample)
                                     : renderTile<false>(scene, frame, s, tiles[t], integrator,
-                                                        checkpoints, resume);
+                                                        checkpoints, resume, firstSample);
                 },
                 sampler);
         }
@@ -404,15 +420,47 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         for (size_t k = 0; k < out.prefixes.size(); ++k)
             out.prefixes[k].nonFinite += r.nonFiniteAt[k];
     }
-    const int firstSample = resume ? resume->spp : 0;
-    if (resume) resume->spp = settings.samplesPerPixel;
-    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(settings.samplesPerPixel - firstSample);
+    if (resume) {
+        resume->first = checkpoints.sumsFirst;
+        resume->spp = checkpoints.spp.back() - checkpoints.sumsFirst;
+    }
+    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(checkpoints.spp.back() - firstSample);
     out.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double fixedSeconds = std::max(0.0, out.stats.seconds - parallelSeconds);
     for (size_t k = 0; k < out.prefixes.size(); ++k)
         out.prefixes[k].seconds =
             fixedSeconds + parallelSeconds * pixelSeconds[k] / std::max(pixelSeconds.back(), 1e-12);
+    return out;
+}
+
+}  // namespace pathlab
+
+namespace pathlab {
+
+RenderOutput imageOfRunningSums(const RenderScene& scene, const RenderSettings& settings,
+                                const RunningSums& sums) {
+    const SceneDescription& desc = scene.description();
+    const Vec2i res = settings.resolution.x > 0 ? settings.resolution : desc.resolution;
+    const FrameSetup frame = makeFrame(desc, res);
+    const PixelBounds& b = frame.bounds;
+    const int w = b.width(), h = b.height();
+    const bool weighted = !sums.weighted.empty();
+    if ((weighted ? sums.weighted.size() : sums.plain.size()) != size_t(w) * size_t(h) ||
+        sums.spp < 1)
+        throw std::logic_error("running sums of another image or film");
+    RenderOutput out{Image(w, h), Image(w, h), {}, {}};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (weighted)
+                writeWeightedPixel(sums.weighted[i], sums.spp, {x, y}, frame.scale, out.image,
+                                   out.varianceOfMean);
+            else
+                writePixel(sums.plain[i], sums.spp, {x, y}, frame.scale, out.image,
+                           out.varianceOfMean);
+        }
+    out.stats.paths = uint64_t(w) * uint64_t(h) * uint64_t(sums.spp);
     return out;
 }
 

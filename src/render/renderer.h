@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,6 +55,14 @@ struct RenderSettings {
     // prefixes), rendering only the samples after its spp, and leave the sums
     // of all samplesPerPixel in it; emptied when the render is cancelled.
     RunningSums* resume = nullptr;
+    // Optional, with `resume` empty: render only samples [first, end) of each
+    // pixel of this render of samplesPerPixel — the very samples the whole
+    // render draws there, whatever the sampler, since its sample k depends on
+    // the pixel, k, the seed and samplesPerPixel only — and leave their sums
+    // alone in `resume` (RunningSums::first = first). Sums of consecutive
+    // ranges added in a fixed order (addRunningSums) make one render of them
+    // all, the same bits whichever process rendered each range.
+    std::optional<SampleRange> sampleRange;
 };
 
 struct RenderStats {
@@ -88,5 +97,12 @@ struct RenderOutput {
 void validateRenderSettings(const RenderSettings& settings);
 
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings);
+
+// The image and variance that a render of `sums.spp` samples per pixel with
+// these settings writes from such sums (e.g. merged sample ranges): bit for
+// bit render()'s image when `sums` are the sums of a whole render. Only
+// `stats.paths` of the statistics is set.
+RenderOutput imageOfRunningSums(const RenderScene& scene, const RenderSettings& settings,
+                                const RunningSums& sums);
 
 }  // namespace pathlab

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -13,6 +12,7 @@
 
 #include "core/error.h"
 #include "study/mpi_in_flight.h"
+#include "study/mpi_work_queue.h"
 
 namespace pathlab {
 namespace {
@@ -24,50 +24,24 @@ double renderWork(const StudySpec& spec, const CellRender& render) {
     return work;
 }
 
-// The list of renders, shared by the thread that talks to the ranks and the
-// thread that renders on rank 0; and the results rank 0 rendered, waiting to
-// be committed by the first (the results store has one writer).
-class RenderQueue {
-  public:
-    explicit RenderQueue(std::vector<RenderTask> tasks) : tasks_(std::move(tasks)) {}
+using RenderQueue = WorkQueue<RenderTask, std::vector<MeasuredCell>>;
 
-    std::optional<RenderTask> next() {
-        std::lock_guard lock(mutex_);
-        if (failure_ || next_ == tasks_.size()) return std::nullopt;
-        return tasks_[next_++];
-    }
-    void fail(std::exception_ptr error) {
-        std::lock_guard lock(mutex_);
-        if (!failure_) failure_ = error;
-    }
-    std::exception_ptr failure() {
-        std::lock_guard lock(mutex_);
-        return failure_;
-    }
-    void addLocalResults(std::vector<MeasuredCell> cells) {
-        std::lock_guard lock(mutex_);
-        for (MeasuredCell& c : cells) local_.push_back(std::move(c));
-    }
-    std::vector<MeasuredCell> takeLocalResults() {
-        std::lock_guard lock(mutex_);
-        return std::exchange(local_, {});
-    }
-
-  private:
-    std::mutex mutex_;
-    std::vector<RenderTask> tasks_;
-    size_t next_ = 0;
-    std::exception_ptr failure_;
-    std::vector<MeasuredCell> local_;
-};
+// "wolf halton-rd 1…256 spp seed 2 (9 cells)"
+std::string renderLabel(const RenderTask& task) {
+    const CellRender& r = task.cells;
+    std::string spp = std::to_string(r.spp.front());
+    if (r.spp.size() > 1) spp += "…" + std::to_string(r.spp.back());
+    return r.cells.front().scene + " " + r.sampler + " " + spp + " spp seed " +
+           std::to_string(r.seed) + " (" + std::to_string(r.cells.size()) + " cells)";
+}
 
 // Rank 0's own renders, on the thread that runs this.
 void renderOnRankZero(RenderQueue& queue, const std::vector<RankScene>& scenes,
                       const CellWriter& writer) {
-    while (const std::optional<RenderTask> task = queue.next()) {
+    while (const std::optional<RenderTask> task = queue.nextLocal(renderLabel)) {
         const RankScene& scene = scenes.at(size_t(task->scene));
         try {
-            queue.addLocalResults(
+            queue.addLocalResult(
                 renderCellGroup(*scene.job, scene.reference, *scene.meter, task->cells, writer));
         } catch (const InputError& e) {
             queue.fail(std::make_exception_ptr(InputError(
@@ -82,15 +56,6 @@ std::exception_ptr reportedFailure(const std::vector<char>& bytes) {
     const std::string text(bytes.begin() + (bytes.empty() ? 0 : 1), bytes.end());
     if (!bytes.empty() && bytes[0] == 'I') return std::make_exception_ptr(InputError(text));
     return std::make_exception_ptr(std::runtime_error(text));
-}
-
-// "wolf halton-rd 1…256 spp seed 2 (9 cells)"
-std::string renderLabel(const RenderTask& task) {
-    const CellRender& r = task.cells;
-    std::string spp = std::to_string(r.spp.front());
-    if (r.spp.size() > 1) spp += "…" + std::to_string(r.spp.back());
-    return r.cells.front().scene + " " + r.sampler + " " + spp + " spp seed " +
-           std::to_string(r.seed) + " (" + std::to_string(r.cells.size()) + " cells)";
 }
 
 // One message of a worker: its results are committed, and it gets the next
@@ -108,12 +73,6 @@ bool answerWorker(int tag, int from, const std::vector<char>& bytes, RenderQueue
     }
     sendMessage(from, kTagStop, {});
     return false;
-}
-
-bool messageWaiting() {
-    int arrived = 0;
-    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
-    return arrived != 0;
 }
 
 }  // namespace
@@ -138,8 +97,13 @@ void coordinateRenders(const MpiSession& session, std::vector<RenderTask> tasks,
     std::thread local([&] { renderOnRankZero(queue, scenes, writer); });
     int working = session.size() - 1;
     std::vector<char> bytes;
+    std::string localShown;
     const auto commitLocal = [&] {
-        for (const MeasuredCell& cell : queue.takeLocalResults()) commitCell(cell, ctx);
+        for (const std::vector<MeasuredCell>& cells : queue.takeLocalResults())
+            for (const MeasuredCell& cell : cells) commitCell(cell, ctx);
+        // Rank 0's own render too, for the message a signal prints.
+        if (std::string label = queue.localLabel(); label != localShown)
+            inFlight.set(0, localShown = std::move(label));
     };
     while (working > 0) {
         commitLocal();

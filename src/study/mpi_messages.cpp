@@ -175,4 +175,39 @@ void decodeReferenceImage(const std::vector<char>& bytes, Image& image, float& e
         throw std::runtime_error("MPI study message: reference of the wrong size");
 }
 
+std::vector<char> encodeRangeTask(const RangeTask& task) {
+    ByteWriter w;
+    w.put(int32_t(task.scene));
+    w.put(int32_t(task.index));
+    return w.take();
+}
+
+RangeTask decodeRangeTask(const std::vector<char>& bytes) {
+    ByteReader r(bytes);
+    RangeTask task;
+    task.scene = r.get<int32_t>();
+    task.index = r.get<int32_t>();
+    return task;
+}
+
+std::vector<char> encodeRangeResult(int scene, const RangeSums& range,
+                                    const std::string& cacheKey) {
+    const std::string sums = encodeRangeSums(range, cacheKey);
+    std::vector<char> bytes(sizeof(int32_t) + sums.size());
+    const int32_t s = scene;
+    std::memcpy(bytes.data(), &s, sizeof s);
+    std::memcpy(bytes.data() + sizeof s, sums.data(), sums.size());
+    return bytes;
+}
+
+RangeSums decodeRangeResult(const std::vector<char>& bytes, int& scene,
+                            const std::vector<std::string>& cacheKeys) {
+    ByteReader r(bytes);
+    scene = r.get<int32_t>();
+    if (scene < 0 || size_t(scene) >= cacheKeys.size())
+        throw std::runtime_error("MPI study message: sums of an unknown scene");
+    const std::string_view sums(bytes.data() + sizeof(int32_t), bytes.size() - sizeof(int32_t));
+    return decodeRangeSums(sums, cacheKeys[size_t(scene)]);
+}
+
 }  // namespace pathlab

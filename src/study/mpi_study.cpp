@@ -13,6 +13,7 @@
 #include "study/files.h"
 #include "study/mpi_coordinator.h"
 #include "study/mpi_messages.h"
+#include "study/mpi_reference_ranges.h"
 #include "study/mpi_worker.h"
 #include "study/runner_steps.h"
 
@@ -61,6 +62,7 @@ void checkDirectoryReachable(const fs::path& dir, const MpiSession& session) {
 
 // Rank 0's state for the whole run: the results store, the progress line.
 struct Coordination {
+    std::optional<DirectorySetup> setup;  // what the study directory held before
     std::unique_ptr<ResultsStore> store;
     std::optional<StudyProgress> progress;
     StudyRun run;
@@ -72,6 +74,7 @@ void beginOnRankZero(const StudySpec& spec, const StudyOptions& options,
                      const std::vector<SceneJob>& jobs, const std::vector<ExternalJob>& externals,
                      int threads, Coordination& c) {
     checkDirectory(spec, jobs, options);
+    c.setup.emplace(options.dir);
     c.store = beginStudyFiles(spec, jobs, options);
     const int totalCells =
         int(spec.scenes.size() * spec.samplers.size() * spec.spp.size()) * spec.seeds +
@@ -81,16 +84,36 @@ void beginOnRankZero(const StudySpec& spec, const StudyOptions& options,
     c.ctx.emplace(StudyContext{spec, options, *c.store, *c.progress, c.run, threads, externals});
 }
 
-// Rank 0 obtains each scene's reference (cache, study directory or render,
-// with all its host's cores); every rank then receives it.
-void shareReferences(const MpiSession& session, const std::vector<SceneJob>& jobs, Coordination& c,
+// Rank 0 takes each scene's reference from the cache or DIR, if it can; the
+// sample ranges of the others not yet saved are rendered by all the ranks
+// (mpi_reference_ranges.h), then merged by rank 0; every rank then receives
+// each reference.
+void shareReferences(const MpiSession& session, const StudySpec& spec,
+                     const std::vector<SceneJob>& jobs, int threads, Coordination& c,
                      std::vector<RankScene>& scenes) {
-    std::vector<Reference> references(jobs.size());
+    std::vector<std::optional<Reference>> found(jobs.size());
+    std::vector<RangeTask> ranges;
     collectively(session, [&] {
         if (session.rank() != 0) return;
         for (size_t s = 0; s < jobs.size(); ++s) {
             c.todo.push_back(unfinishedCells(jobs[s], *c.ctx));
-            references[s] = obtainReference(jobs[s], *c.ctx);
+            found[s] = findReference(jobs[s], *c.ctx);
+            if (!found[s])
+                for (int index : missingReferenceRanges(jobs[s], *c.ctx))
+                    ranges.push_back({int(s), index});
+        }
+    });
+    collectively(session, [&] {
+        if (session.rank() == 0)
+            coordinateReferenceRanges(session, std::move(ranges), jobs, threads, *c.ctx);
+        else
+            renderReferenceRangesAsWorker(session, jobs, spec, threads);
+    });
+    std::vector<Reference> references(jobs.size());
+    collectively(session, [&] {
+        if (session.rank() != 0) return;
+        for (size_t s = 0; s < jobs.size(); ++s) {
+            references[s] = found[s] ? std::move(*found[s]) : finishReference(jobs[s], *c.ctx);
             recordReference(jobs[s], references[s], *c.ctx);
         }
     });
@@ -136,28 +159,37 @@ StudyRun runStudyAcrossRanks(const std::function<StudySpec()>& loadSpec,
     collectively(session, [&] {
         if (coordinator) beginOnRankZero(spec, options, jobs, externals, threads, c);
     });
-    collectively(session, [&] {
-        if (!coordinator) checkDirectoryReachable(options.dir, session);
-    });
+    try {
+        collectively(session, [&] {
+            if (!coordinator) checkDirectoryReachable(options.dir, session);
+        });
+    } catch (...) {
+        // Nothing was rendered: the directory is left as it was, so the same
+        // command works once every host reaches it.
+        if (coordinator) {
+            c.store.reset();
+            c.setup->undo();
+        }
+        throw;
+    }
+    // Each rank renders with its share of its host's cores.
+    std::optional<tbb::global_control> limit;
+    limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
     std::vector<RankScene> scenes(jobs.size());
-    shareReferences(session, jobs, c, scenes);
+    shareReferences(session, spec, jobs, threads, c, scenes);
     for (size_t s = 0; s < jobs.size(); ++s) {
         scenes[s].job = &jobs[s];
         scenes[s].meter = std::make_unique<CellMeter>(
             scenes[s].reference.image, scenes[s].reference.exposure, spec, &jobs[s].edgeMask);
     }
-    {
-        // Each rank renders with its share of its host's cores.
-        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                                        size_t(threads));
-        const CellWriter writer{spec, options.dir, threads};
-        collectively(session, [&] {
-            if (coordinator)
-                coordinateRenders(session, scheduleRenders(spec, c.todo), scenes, writer, *c.ctx);
-            else
-                runStudyWorker(session, scenes, writer);
-        });
-    }
+    const CellWriter writer{spec, options.dir, threads};
+    collectively(session, [&] {
+        if (coordinator)
+            coordinateRenders(session, scheduleRenders(spec, c.todo), scenes, writer, *c.ctx);
+        else
+            runStudyWorker(session, scenes, writer);
+    });
+    limit.reset();
     collectively(session, [&] {
         if (coordinator) finishOnRankZero(spec, options, jobs, externals, scenes, c);
     });

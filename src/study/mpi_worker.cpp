@@ -33,6 +33,21 @@ void sendMessage(int to, int tag, const std::vector<char>& bytes) {
     MPI_Send(bytes.data(), int(bytes.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD);
 }
 
+bool messageWaiting() {
+    int arrived = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
+    return arrived != 0;
+}
+
+std::vector<char> failureMessage(const MpiSession& session, const std::string& what,
+                                 const std::exception& error) {
+    const bool input = dynamic_cast<const InputError*>(&error) != nullptr;
+    const std::string text = std::string(input ? "I" : "E") +
+                             rankName(session.rank(), session.host()) + ", rendering " + what +
+                             ": " + error.what();
+    return std::vector<char>(text.begin(), text.end());
+}
+
 void runStudyWorker(const MpiSession& session, const std::vector<RankScene>& scenes,
                     const study_steps::CellWriter& writer) {
     sendMessage(0, kTagReady, {});
@@ -46,12 +61,9 @@ void runStudyWorker(const MpiSession& session, const std::vector<RankScene>& sce
                                                                *scene.meter, task.cells, writer);
             sendMessage(0, kTagResult, encodeMeasured(measured));
         } catch (const std::exception& e) {
-            // First byte: 'I' for the user's input (InputError), 'E' otherwise.
-            const bool input = dynamic_cast<const InputError*>(&e) != nullptr;
-            const std::string text =
-                std::string(input ? "I" : "E") + rankName(session.rank(), session.host()) +
-                ", rendering " + study_steps::cellLabel(task.cells.cells.front()) + ": " + e.what();
-            sendMessage(0, kTagFailed, std::vector<char>(text.begin(), text.end()));
+            sendMessage(
+                0, kTagFailed,
+                failureMessage(session, study_steps::cellLabel(task.cells.cells.front()), e));
         }
     }
 }

@@ -3,7 +3,9 @@
 // shared study directory) and sends the measurements back.
 #pragma once
 
+#include <exception>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "study/mpi_session.h"
@@ -30,5 +32,12 @@ std::string rankName(int rank, const std::string& host);
 // spinning; returns its tag, and `from` the rank it came from.
 int receiveMessage(int source, std::vector<char>& bytes, int& from);
 void sendMessage(int to, int tag, const std::vector<char>& bytes);
+// Whether a message from any rank is waiting to be received.
+bool messageWaiting();
+
+// The FAILED message of a rank whose work on `what` threw `error`: its first
+// byte 'I' for the user's input (InputError), else 'E', then the line.
+std::vector<char> failureMessage(const MpiSession& session, const std::string& what,
+                                 const std::exception& error);
 
 }  // namespace pathlab

@@ -209,22 +209,4 @@ RenderSettings studyRenderSettings(const StudySpec& spec, int threads) {
     return s;
 }
 
-Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
-                          const std::string& cacheKey, const std::vector<uint8_t>& edgeMask) {
-    RenderSettings s = studyRenderSettings(spec, threads);
-    s.sampler = spec.reference.sampler;
-    s.samplesPerPixel = spec.reference.spp;
-    s.seed = spec.reference.seed;
-    s.progress = true;
-    RenderOutput out = render(scene, s);
-    Reference r;
-    r.noise = referenceNoise(out.image, out.varianceOfMean, &edgeMask);
-    r.exposure = viewingExposure(out.image);
-    r.seconds = out.stats.seconds;
-    r.image = std::move(out.image);
-    r.cacheKey = cacheKey;
-    r.edgePixels = std::count(edgeMask.begin(), edgeMask.end(), uint8_t(1));
-    return r;
-}
-
 }  // namespace pathlab

@@ -27,8 +27,9 @@ struct Reference {
 };
 
 // Bumped whenever the renderer's output for the same inputs changes, so stale
-// references are never reused.
-inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-6";
+// references are never reused (7: a reference is the sum of its sample
+// ranges, reference_ranges.h).
+inline constexpr const char* kReferenceCacheVersion = "pathlab-reference-7";
 
 // Hash of what determines the reference's pixels: the scene as loaded (camera,
 // materials, textures, geometry), the scene file's bytes for a file scene, the
@@ -47,6 +48,7 @@ class ReferenceCache {
     // The cache under cacheDirectory() ($PATHLAB_CACHE and friends).
     static ReferenceCache standard();
 
+    const std::filesystem::path& directory() const { return directory_; }
     bool contains(const std::string& key) const;
     // Nullopt when absent or unreadable (a damaged entry is rendered again).
     std::optional<Reference> load(const std::string& key) const;
@@ -63,11 +65,5 @@ class ReferenceCache {
 // alike (resolution, path depth, roulette, threads), so the two cannot drift
 // apart; the caller sets the sampler, spp and seed.
 RenderSettings studyRenderSettings(const StudySpec& spec, int threads);
-
-// Renders the reference with all `threads` (0 = all cores), showing the
-// renderer's progress, and measures its noise floor (over the whole image and
-// over each region of `edgeMask`, emitterEdgePixels) and viewing exposure.
-Reference renderReference(const RenderScene& scene, const StudySpec& spec, int threads,
-                          const std::string& cacheKey, const std::vector<uint8_t>& edgeMask);
 
 }  // namespace pathlab

@@ -134,8 +134,6 @@ void checkDirectory(const StudySpec& spec, const std::vector<SceneJob>& jobs,
     requireSameScenes(dir, jobs);
 }
 
-// The outermost directory of `dir` that does not exist yet, or "" when `dir`
-// exists: what removing the study's files must remove.
 fs::path firstMissingDirectory(const fs::path& dir) {
     std::error_code ec;
     fs::path missing;
@@ -146,33 +144,6 @@ fs::path firstMissingDirectory(const fs::path& dir) {
     }
     return missing;
 }
-
-// The files a study begins with. Should writing them fail (a full disk, a
-// directory that cannot be written), what was created is removed again, so
-// the directory is left as it was.
-class DirectorySetup {
-  public:
-    explicit DirectorySetup(const fs::path& dir) : dir_(dir), missing_(firstMissingDirectory(dir)) {
-        std::error_code ec;
-        for (const char* name : kEntries) existed_.push_back(fs::exists(dir / name, ec));
-    }
-    void undo() const {
-        std::error_code ec;
-        if (!missing_.empty()) {
-            fs::remove_all(missing_, ec);
-            return;
-        }
-        for (size_t i = 0; i < std::size(kEntries); ++i)
-            if (!existed_[i]) fs::remove_all(dir_ / kEntries[i], ec);
-    }
-
-  private:
-    static constexpr const char* kEntries[] = {"references",         "spec.toml",
-                                               "results.sqlite",     "results.sqlite-wal",
-                                               "results.sqlite-shm", "results.sqlite-journal"};
-    fs::path dir_, missing_;
-    std::vector<bool> existed_;
-};
 
 std::string joined(const std::vector<std::string>& items) {
     std::string out;
@@ -242,70 +213,6 @@ std::unique_ptr<ResultsStore> beginStudyFiles(const StudySpec& spec,
         setup.undo();
         throw;
     }
-}
-
-// From the cache, else from this study's own copy (a resumed study whose
-// cache was cleared), else rendered — and cached for the studies to come.
-Reference obtainReference(const SceneJob& job, StudyContext& ctx) {
-    const ReferenceCache cache = ReferenceCache::standard();
-    const std::string what = job.scene.name + " (" + std::to_string(ctx.spec.reference.spp) +
-                             " spp " + ctx.spec.reference.sampler + ", " +
-                             std::to_string(ctx.spec.resolution.x) + "x" +
-                             std::to_string(ctx.spec.resolution.y) + ")";
-    // An entry's region floors were measured over the mask it was rendered
-    // with; one whose edge count differs is from another mask: rendered again.
-    if (auto cached = cache.load(job.cacheKey); cached && cached->edgePixels == job.edgePixels) {
-        ctx.progress.message("reference: cached " + what);
-        ++ctx.run.referencesReused;
-        return std::move(*cached);
-    }
-    const fs::path own = ctx.options.dir / "references" / (job.scene.name + ".exr");
-    for (const ReferenceRow& row : ctx.store.references()) {
-        if (row.scene != job.scene.name || row.cacheKey != job.cacheKey) continue;
-        if (row.edgePixels != job.edgePixels || !row.noiseMseRest) break;  // an older study
-        if (!fs::is_regular_file(own)) break;
-        ctx.progress.message("reference: from the study directory " + what);
-        Reference r{readImage(own.string()),
-                    row.seconds,
-                    {row.noiseMse, row.noiseRelmse, row.noiseMseEdge, row.noiseMseRest},
-                    float(row.exposure),
-                    row.cacheKey,
-                    job.edgePixels};
-        cache.store(r, job.scene, ctx.spec);
-        ++ctx.run.referencesReused;
-        return r;
-    }
-    ctx.progress.message("rendering reference: " + what);
-    Reference r =
-        renderReference(*job.render, ctx.spec, ctx.options.threads, job.cacheKey, job.edgeMask);
-    cache.store(r, job.scene, ctx.spec);
-    ++ctx.run.referencesRendered;
-    ctx.progress.addWorkDone(pixels(ctx.spec) * ctx.spec.reference.spp);
-    return r;
-}
-
-// The reference with its emitter-edge pixels painted cyan (full green and
-// blue at the viewing exposure), for the report to show where they are.
-Image withEdgeMarked(const Image& reference, const std::vector<uint8_t>& edgeMask, float exposure) {
-    Image marked = reference;
-    const float full = std::exp2(-exposure);  // 1 after the exposure is applied
-    for (size_t i = 0; i < edgeMask.size(); ++i)
-        if (edgeMask[i])
-            marked.set(int(i % size_t(marked.width)), int(i / size_t(marked.width)),
-                       Vec3f(0, full, full));
-    return marked;
-}
-
-void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ctx) {
-    const std::string stem = "references/" + job.scene.name;
-    writeImage((ctx.options.dir / (stem + ".exr")).string(), ref.image);
-    writeImage((ctx.options.dir / (stem + ".png")).string(), ref.image, ref.exposure);
-    writeImage((ctx.options.dir / (stem + "-edge.png")).string(),
-               withEdgeMarked(ref.image, job.edgeMask, ref.exposure), ref.exposure);
-    ctx.store.putReference({job.scene.name, ctx.spec.reference.sampler, ctx.spec.reference.spp,
-                            ref.seconds, ref.cacheKey, ref.noise.mse, ref.noise.relmse,
-                            ref.exposure, stem + ".exr", ref.noise.mseEdge, ref.noise.mseRest,
-                            ref.edgePixels});
 }
 
 // The images first, each renamed into place; the row last, in one

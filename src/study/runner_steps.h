@@ -4,7 +4,9 @@
 #pragma once
 
 #include <filesystem>
+#include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "study/external.h"
 #include "study/progress.h"
 #include "study/reference_cache.h"
+#include "study/reference_ranges.h"
 #include "study/results_store.h"
 #include "study/runner.h"
 #include "study/spec.h"
@@ -81,6 +84,40 @@ struct MeasuredCell {
     CellMetrics metrics;
 };
 
+// The outermost directory of `dir` that does not exist yet, or "" when `dir`
+// exists: what removing the study's files must remove.
+std::filesystem::path firstMissingDirectory(const std::filesystem::path& dir);
+
+// The files a study begins with. Should writing them fail (a full disk, a
+// directory that cannot be written), what was created is removed again, so
+// the directory is left as it was (also when a rank of a study across MPI
+// ranks cannot reach it).
+class DirectorySetup {
+  public:
+    explicit DirectorySetup(const std::filesystem::path& dir)
+        : dir_(dir), missing_(firstMissingDirectory(dir)) {
+        std::error_code ec;
+        for (const char* name : kEntries)
+            existed_.push_back(std::filesystem::exists(dir / name, ec));
+    }
+    void undo() const {
+        std::error_code ec;
+        if (!missing_.empty()) {
+            std::filesystem::remove_all(missing_, ec);
+            return;
+        }
+        for (size_t i = 0; i < std::size(kEntries); ++i)
+            if (!existed_[i]) std::filesystem::remove_all(dir_ / kEntries[i], ec);
+    }
+
+  private:
+    static constexpr const char* kEntries[] = {"references",         "spec.toml",
+                                               "results.sqlite",     "results.sqlite-wal",
+                                               "results.sqlite-shm", "results.sqlite-journal"};
+    std::filesystem::path dir_, missing_;
+    std::vector<bool> existed_;
+};
+
 double pixels(const StudySpec& spec);
 double cellWork(const StudySpec& spec, const CellKey& key);
 std::string cellLabel(const CellKey& key);
@@ -98,7 +135,19 @@ double totalWork(const StudySpec& spec, const std::vector<SceneJob>& jobs);
 
 // The scene's cells not yet in the results; the others are counted as skipped.
 std::vector<CellKey> unfinishedCells(const SceneJob& job, StudyContext& ctx);
+// A scene's reference: findReference takes it from the cache or the study
+// directory; else it is rendered in sample ranges (reference_ranges.h), each
+// saved as it is done (saveReferenceRange), those already saved skipped
+// (missingReferenceRanges), then merged and cached by finishReference, which
+// renders any range still missing. obtainReference does all of it in this
+// process.
+std::optional<Reference> findReference(const SceneJob& job, StudyContext& ctx);
+std::vector<int> missingReferenceRanges(const SceneJob& job, StudyContext& ctx);
+void saveReferenceRange(const SceneJob& job, const RangeSums& range, StudyContext& ctx);
+Reference finishReference(const SceneJob& job, StudyContext& ctx);
 Reference obtainReference(const SceneJob& job, StudyContext& ctx);
+// "wolf reference samples 256…511 (range 2 of 16)"
+std::string rangeLabel(const SceneJob& job, const StudySpec& spec, int index);
 void recordReference(const SceneJob& job, const Reference& ref, StudyContext& ctx);
 std::vector<CellRender> planRenders(const std::vector<CellKey>& todo);
 

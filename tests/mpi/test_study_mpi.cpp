@@ -154,6 +154,7 @@ TEST(MpiStudy, RankKilledThenResumeFinishesEveryCellOnce) {
     // mpirun names the rank that died; rank 0 names what it was rendering.
     EXPECT_NE(log.find("process rank 1"), std::string::npos) << log;
     EXPECT_NE(log.find("rank 1: cornell-box"), std::string::npos) << log;
+    EXPECT_NE(log.find("rank 0: cornell-box"), std::string::npos) << "its own render: " << log;
     std::map<CellKey, CellRow> before = byKey(testing::readCells(out));
     ASSERT_LT(before.size(), 42u);
 
@@ -170,6 +171,97 @@ TEST(MpiStudy, RankKilledThenResumeFinishesEveryCellOnce) {
         EXPECT_EQ(after.at(key).finishedAt, row.finishedAt);
         EXPECT_EQ(after.at(key).seconds, row.seconds);
     }
+    fs::remove_all(dir);
+}
+
+// A 48×48 reference of 4096 spp: 16 sample ranges of 256, each long enough
+// to kill rank 0 between two of them; one cheap cell.
+std::string referenceKillSpec() {
+    return "name = \"mpi-ranges\"\n"
+           "scenes = [\"cornell-box\"]\n"
+           "samplers = [\"independent\"]\n"
+           "spp = [1]\n"
+           "seeds = 1\n"
+           "resolution = [48, 48]\n"
+           "[reference]\nspp = 4096\n";
+}
+
+int rangeFiles(const fs::path& cache) {
+    int n = 0;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(cache, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        n += it->path().extension() == ".sums";
+    return n;
+}
+
+// Rank 0 killed while the ranks render the reference's sample ranges: the
+// ranges saved stay, a new mpirun of another size renders only the others,
+// and the reference is the single-process study's, bit for bit.
+TEST(MpiStudy, RankZeroKilledMidReferenceThenResumeKeepsItsRanges) {
+    const auto dir = testing::scratchDirectory("mpi-ranges");
+    const auto spec = testing::writeSpec(dir, "ranges.toml", referenceKillSpec());
+    testing::usePrivateCache(dir / "one");
+    const auto one =
+        testing::runPathlab("study " + spec.string() + " -o " + (dir / "one/study").string(), dir);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+
+    const fs::path cache = testing::usePrivateCache(dir / "mpi");
+    const auto out = dir / "mpi/study";
+    const pid_t mpirun = startMpiStudy(spec, out, dir / "killed.log");
+    ASSERT_GT(mpirun, 0);
+    const auto deadline = Clock::now() + std::chrono::minutes(2);
+    int status = 0;
+    while (rangeFiles(cache) < 2 && Clock::now() < deadline) {
+        ASSERT_EQ(::waitpid(mpirun, &status, WNOHANG), 0)
+            << "mpirun ended early: " << testing::slurpFile(dir / "killed.log");
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    const pid_t rankZero = findRank(mpirun, 0);
+    ASSERT_GT(rankZero, 0) << "no rank 0 under mpirun " << mpirun;
+    ::kill(rankZero, SIGKILL);
+    ::waitpid(mpirun, &status, 0);
+    ASSERT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "finished before the kill";
+    const int kept = rangeFiles(cache);
+    ASSERT_GE(kept, 2);
+    ASSERT_LT(kept, 16) << testing::slurpFile(dir / "killed.log");
+
+    const auto resumed =
+        runMpi(2, "study " + spec.string() + " -o " + out.string() + " --resume", dir);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_NE(resumed.err.find("in 16 sample ranges, " + std::to_string(kept) + " already done"),
+              std::string::npos)
+        << resumed.err;
+    EXPECT_EQ(rangeFiles(cache), 0) << "merged, then removed";
+    expectSamePixels(dir / "one/study/references/cornell-box.exr",
+                     out / "references/cornell-box.exr");
+    fs::remove_all(dir);
+}
+
+// A rank that sees another directory under DIR's name (a file system not
+// mounted on its host) stops the job before any rendering, with one line,
+// and the new study directory is removed again.
+TEST(MpiStudy, RankThatCannotReachTheDirectoryFailsFast) {
+    const auto dir = testing::scratchDirectory("mpi-unreachable");
+    testing::usePrivateCache(dir);
+    const auto spec = testing::writeSpec(dir, "tiny.toml", testing::tinySpec());
+    const std::string study = "study " + spec.string() + " -o ";
+    // mpirun's multiple-program form: rank 2 is given a directory of its own.
+    const std::string cmd =
+        std::string(PATHLAB_MPIEXEC) + " --oversubscribe --bind-to none -x PATHLAB_CACHE -np 2 " +
+        PATHLAB_BINARY + " " + study + (dir / "shared").string() + " : -np 1 " + PATHLAB_BINARY +
+        " " + study + (dir / "elsewhere").string() + " >" + (dir / "out.txt").string() + " 2>" +
+        (dir / "err.txt").string() + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    const std::string err = testing::slurpFile(dir / "err.txt");
+    ASSERT_TRUE(WIFEXITED(status)) << err;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << err;
+    const auto first = err.find("pathlab: error: rank 2 (");
+    ASSERT_NE(first, std::string::npos) << err;
+    EXPECT_NE(err.find("cannot reach the study directory", first), std::string::npos) << err;
+    EXPECT_EQ(err.find("pathlab: error:", first + 1), std::string::npos) << err;
+    EXPECT_EQ(err.find("reference"), std::string::npos) << "stopped before rendering: " << err;
+    EXPECT_FALSE(fs::exists(dir / "shared")) << "what rank 0 began is removed";
     fs::remove_all(dir);
 }
 
