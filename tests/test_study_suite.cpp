@@ -1,5 +1,6 @@
 // The scene suite: the `suite` and `quick-suite` presets, the difficulty tags
-// a spec carries, and the public scenes --scenes-dir adds.
+// a spec carries, the public scenes --scenes-dir adds, and the quick suite
+// end to end down to the report's verdict page.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -126,6 +127,47 @@ TEST(SuiteCli, ScenesDirThatIsNoDirectoryOrWithoutASuiteIsRefused) {
     EXPECT_EQ(r.errLines(), 1) << r.err;
     EXPECT_NE(r.err.find("--scenes-dir"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
+
+size_t count(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+    return n;
+}
+
+// The quick suite as `make test` runs it: the study, the report, and a
+// verdict page with the paragraph and a ranking per scene.
+TEST(SuiteCli, QuickSuiteReportHasAVerdictWithARankingPerScene) {
+    const auto dir = testing::scratchDirectory("suite-quick");
+    testing::usePrivateCache(dir);
+    const auto out = dir / "study";
+    auto r = runPathlab("study --preset quick-suite -o " + out.string(), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runPathlab("report " + out.string(), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string index = testing::slurpFile(out / "report/index.html");
+    EXPECT_NE(index.find("href=\"verdict.html\""), std::string::npos);
+    const std::string page = testing::slurpFile(out / "report/verdict.html");
+    ASSERT_FALSE(page.empty());
+    const StudySpec quick = presetSpec("quick-suite");
+    // The overall table, one per difficulty, one per scene.
+    EXPECT_EQ(count(page, "<table class=\"ranking\">"), 1 + 2 * quick.scenes.size());
+    for (const StudyScene& s : quick.scenes) {
+        const auto at = page.find("id=\"scene-" + s.name + "\"");
+        ASSERT_NE(at, std::string::npos) << s.name;
+        const std::string section = page.substr(at, page.find("<h2", at + 1) - at);
+        EXPECT_NE(section.find(s.difficulty), std::string::npos) << s.name;
+        EXPECT_EQ(count(section, " spp</th>"), quick.spp.size()) << s.name;
+        for (const std::string& sampler : quick.samplers)
+            EXPECT_EQ(count(section, "</span>" + sampler + " "), 3 * quick.spp.size())
+                << s.name << " " << sampler;
+    }
+    const auto answer = page.find("id=\"answer\"");
+    ASSERT_NE(answer, std::string::npos);
+    const std::string paragraph = page.substr(answer, page.find("</p>", answer) - answer);
+    EXPECT_NE(paragraph.find("At 16 spp, across the 4 scenes"), std::string::npos) << paragraph;
+    EXPECT_NE(paragraph.find("environment-lit scenes"), std::string::npos) << paragraph;
     fs::remove_all(dir);
 }
 
