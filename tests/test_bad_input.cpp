@@ -202,7 +202,7 @@ const BadInput kCases[] = {
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
      "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
-     "roulette_depth, metrics, time_budget_seconds, reference, external)"},
+     "roulette_depth, metrics, time_budget_seconds, reference, external, difficulty)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
      "SPEC-SAMPLER"},
     {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",
@@ -210,7 +210,10 @@ const BadInput kCases[] = {
     {"absurd size in spec", "study {dir}/absurd-size.toml -o {dir}/study", "study",
      "{dir}/absurd-size.toml:4: key 'resolution[0]' must be between 1 and 16384, got 1000000"},
     {"unknown preset", "study --preset nope -o {dir}/study", "study",
-     "unknown preset 'nope' (known: seed, quick, full)"},
+     "unknown preset 'nope' (known: seed, quick, full, suite, quick-suite)"},
+    {"scenes dir that is no directory",
+     "study --preset quick-suite --scenes-dir {dir}/nowhere -o {dir}/study", "study",
+     "--scenes-dir '{dir}/nowhere' is not a directory"},
     {"absurd study threads", "study {dir}/ok.toml -o {dir}/study --threads 5000", "study",
      "--threads must be between 0 (all cores) and 4096, got 5000"},
     {"a spec's scene that cannot be loaded", "study {dir}/bad-scene.toml -o {dir}/study", "study",

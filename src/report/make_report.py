@@ -20,6 +20,7 @@ import numpy as np
 
 import error_spectra
 import figures
+import verdict
 from study_data import Study, StudyError
 
 GRID_SPPS = (1, 8)  # the presentation's two columns of the comparison grid
@@ -465,6 +466,23 @@ def header(study):
             f'</nav></header>')
 
 
+# Pages beside index.html: each module's write(study, report_dir) writes its
+# page and returns (href, link text, one-paragraph summary) or None.
+EXTRA_PAGES = (verdict,)
+
+
+def extra_pages(study, report_dir):
+    """Writes the extra pages; returns index.html's links to them."""
+    links = []
+    for module in EXTRA_PAGES:
+        page = module.write(study, report_dir)
+        if page:
+            href, text, summary = page
+            links.append(f'<p class="page-link"><a href="{esc(href)}"><b>{esc(text)}</b></a>: '
+                         f'{esc(summary)}</p>')
+    return "".join(links)
+
+
 def render_page(assets, title, body, data):
     with open(os.path.join(assets, "template.html"), encoding="utf-8") as f:
         page = f.read()
@@ -507,7 +525,7 @@ def build(study, report_dir, assets, pathlab):
         scenes_data.append(data)
     if not scenes_data:
         raise StudyError(f"'{study.dir}' has no scene with a reference image yet")
-    body = header(study) + "".join(sections)
+    body = header(study) + extra_pages(study, report_dir) + "".join(sections)
     own = [s for s in study.samplers() if ":" not in s]  # external ones have no points
     body += (f'<section id="gallery"><h2>Sampler gallery</h2>'
              f'{gallery(own, pathlab, figures_dir)}</section>')

@@ -1,6 +1,9 @@
 #include "study/presets.h"
 
+#include <iostream>
+
 #include "core/error.h"
+#include "study/suite_presets.h"
 
 namespace pathlab {
 namespace {
@@ -62,14 +65,17 @@ StudySpec fullPreset() {
 }  // namespace
 
 std::vector<std::string> presetNames() {
-    return {"seed", "quick", "full"};
+    return {"seed", "quick", "full", "suite", "quick-suite"};
 }
 
 StudySpec presetSpec(const std::string& name) {
     if (name == "seed") return seedPreset();
     if (name == "quick") return quickPreset();
     if (name == "full") return fullPreset();
-    throw InputError("unknown preset '" + name + "' (known: seed, quick, full)");
+    if (name == "suite") return suitePreset(std::cerr);
+    if (name == "quick-suite") return quickSuitePreset();
+    throw InputError("unknown preset '" + name +
+                     "' (known: seed, quick, full, suite, quick-suite)");
 }
 
 }  // namespace pathlab

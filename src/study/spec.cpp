@@ -119,6 +119,7 @@ class SpecReader {
     ReferenceSpec reference(const toml::node& n) const;
     std::vector<ExternalSpec> externals(const toml::node& n,
                                         const std::vector<StudyScene>& scenes) const;
+    void difficulties(const toml::node& n, std::vector<StudyScene>& scenes) const;
 
   private:
     ExternalSpec external(const toml::node& n, const std::string& key,
@@ -161,6 +162,20 @@ std::vector<StudyScene> SpecReader::scenes(const toml::node& n) const {
         out.push_back(std::move(s));
     }
     return out;
+}
+
+// [difficulty]: scene name = "what makes it hard", for the scenes that say.
+void SpecReader::difficulties(const toml::node& n, std::vector<StudyScene>& scenes) const {
+    if (!n.is_table()) failType(n, "difficulty", "a table");
+    for (auto&& [k, v] : *n.as_table()) {
+        const std::string name(k.str()), key = "difficulty." + name;
+        const auto scene = std::find_if(scenes.begin(), scenes.end(),
+                                        [&](const StudyScene& s) { return s.name == name; });
+        if (scene == scenes.end())
+            fail(k.source(), key, "names no scene of the study ('" + name + "')");
+        scene->difficulty = string(v, key);
+        if (scene->difficulty.empty()) fail(v.source(), key, "must not be empty");
+    }
 }
 
 std::vector<int> SpecReader::sppList(const toml::node& n) const {
@@ -267,13 +282,14 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
     in.onlyKeys(t, "",
                 {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
                  "russian_roulette", "roulette_depth", "metrics", "time_budget_seconds",
-                 "reference", "external"});
+                 "reference", "external", "difficulty"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
         s.name = in.string(*v, "name");
         if (s.name.empty()) in.fail(v->source(), "name", "must not be empty");
     }
     s.scenes = in.scenes(in.required(t, "scenes"));
+    if (const toml::node* v = t.get("difficulty")) in.difficulties(*v, s.scenes);
     s.samplers = in.names(in.required(t, "samplers"), "samplers", samplerNames(), "sampler");
     s.spp = in.sppList(in.required(t, "spp"));
     if (const toml::node* v = t.get("seeds")) s.seeds = int(in.integer(*v, "seeds", 1, 10000));
@@ -378,6 +394,13 @@ std::string studySpecToToml(const StudySpec& s) {
         << "spp = " << s.reference.spp << "\n"
         << "sampler = " << quoted(s.reference.sampler) << "\n"
         << "seed = " << s.reference.seed << "\n";
+    if (std::any_of(s.scenes.begin(), s.scenes.end(),
+                    [](const StudyScene& scene) { return !scene.difficulty.empty(); })) {
+        out << "\n[difficulty]\n";
+        for (const StudyScene& scene : s.scenes)
+            if (!scene.difficulty.empty())
+                out << quoted(scene.name) << " = " << quoted(scene.difficulty) << "\n";
+    }
     for (const ExternalSpec& e : s.externals) {
         out << "\n[[external]]\n"
             << "name = " << quoted(e.name) << "\n"
@@ -409,8 +432,9 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.reference.spp != b.reference.spp) return "reference.spp";
     if (a.reference.sampler != b.reference.sampler) return "reference.sampler";
     if (a.reference.seed != b.reference.seed) return "reference.seed";
-    // [[external]] tables may differ: a resumed study measures the renders
-    // they name now beside its own cells, which they do not change.
+    // [difficulty] may differ: it only labels scenes for the report. So may
+    // [[external]] tables: a resumed study measures the renders they name now
+    // beside its own cells, which they do not change.
     return "";
 }
 

@@ -29,10 +29,13 @@ struct ReferenceSpec {
 // or the file's stem), `source` is what loadScene() gets (built-in name or
 // absolute path). `origin` says where the spec names it ("spec.toml:3: key
 // 'scenes[0]'", empty for a preset), so a scene that fails to load is
-// reported against the line that asked for it.
+// reported against the line that asked for it. `difficulty` says what makes
+// the scene hard ("glossy", "environment", …; empty when untold): the
+// report's verdict groups scenes by it. It changes no pixel.
 struct StudyScene {
     std::string name, source;
     std::string origin = {};
+    std::string difficulty = {};
 };
 
 // Another renderer's images of a scene, judged beside the study's own cells
