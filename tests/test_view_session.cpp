@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "metrics/image_metrics.h"
-#include "view/accumulation.h"
+#include "render/accumulation.h"
 #include "view_test_util.h"
 
 namespace pathlab {
@@ -24,7 +24,7 @@ TEST(ViewAccumulation, PassesEqualRendersOfTheirSpp) {
     for (const std::string sampler : {"sobol-owen", "pmj02"}) {  // progressive, not
         RenderSettings s;
         s.sampler = sampler, s.seed = v.seed, s.resolution = v.size, s.maxDepth = v.maxDepth;
-        view::Accumulation acc(s);
+        Accumulation acc(s);
         for (int spp : {1, 2, 4, 7}) {
             if (!acc.progressive() && spp == 7) continue;  // pmj02 passes double
             acc.advance(*scene, spp);

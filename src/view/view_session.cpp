@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "render/accumulation.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
-#include "view/accumulation.h"
 
 namespace pathlab::view {
 namespace {
