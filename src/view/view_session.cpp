@@ -150,6 +150,14 @@ bool ViewSession::referenceFits(const Image& image) const {
            errors_->reference().width == image.width && errors_->reference().height == image.height;
 }
 
+std::vector<float> ViewSession::errorMap(const Image& image, ErrorMapKind kind) const {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!referenceFits(image)) return {};
+    }
+    return errors_->errorMap(image, kind);  // errors_ never changes after construction
+}
+
 std::vector<ErrorPoint> ViewSession::errorPoints() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return errorPoints_;
