@@ -15,8 +15,16 @@ alternate between the two so that drift in the machine's load hits both; the
 medians and their ratio are printed, and the time the Python call spends
 outside the renderer (its wall time less the renderer's clock), which does not
 depend on how busy the machine is.
+
+Then the cost of pathlab.render_progressive to the same 64 spp in steps of
+STEPS (default 8,32: eight images, two) against one pathlab.render of 64 spp,
+alternating too: each step continues the previous one, so the whole should
+cost about one render plus what each pass costs beyond its samples.
+
+    ... bench/python_overhead.py build/release/pathlab [RUNS [STEPS]]
 """
 
+import os
 import re
 import statistics
 import subprocess
@@ -45,9 +53,36 @@ def python_seconds(scene):
     return wall, wall - stats["seconds"]
 
 
+def progressive_seconds(scene, step):
+    start = time.perf_counter()
+    for _ in pathlab.render_progressive(scene, SETTINGS["spp"], step,
+                                        **{k: v for k, v in SETTINGS.items() if k != "spp"}):
+        pass
+    return time.perf_counter() - start
+
+
+def compare_progressive(scene, runs, step_sizes):
+    whole, steps = [], {step: [] for step in step_sizes}
+    for _ in range(runs):
+        start = time.perf_counter()
+        pathlab.render(scene, **SETTINGS)
+        whole.append(time.perf_counter() - start)
+        for step in step_sizes:
+            steps[step].append(progressive_seconds(scene, step))
+    w = statistics.median(whole)
+    print("one pathlab.render median %.4f s  (min %.4f)" % (w, min(whole)))
+    for step, seconds in steps.items():
+        p = statistics.median(seconds)
+        print("render_progressive, steps of %2d spp (%d images): median %.4f s (min %.4f), "
+              "%+.2f%% (medians), %+.2f%% (minima)"
+              % (step, -(-SETTINGS["spp"] // step), p, min(seconds), 100 * (p / w - 1),
+                 100 * (min(seconds) / min(whole) - 1)))
+
+
 def main():
     binary = sys.argv[1]
     runs = int(sys.argv[2]) if len(sys.argv) > 2 else 10
+    step_sizes = [int(s) for s in (sys.argv[3] if len(sys.argv) > 3 else "8,32").split(",")]
     scene = pathlab.load_scene("cornell-box")
     with tempfile.TemporaryDirectory() as tmp:
         out = tmp + "/cli.exr"
@@ -68,6 +103,8 @@ def main():
     # Independent of the machine's load: what the binding adds around render().
     b = statistics.median(binding)
     print("binding        median %.5f s outside render() (%.3f%% of the call)" % (b, 100 * b / p))
+    compare_progressive(scene, runs, step_sizes)
+    print("load average   %.2f %.2f %.2f" % os.getloadavg())
 
 
 if __name__ == "__main__":

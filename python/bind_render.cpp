@@ -12,37 +12,12 @@
 #include <optional>
 #include <thread>
 
-#include "bindings.h"
 #include "render/render_options.h"
 #include "render/renderer.h"
+#include "render_binding.h"
 #include "scene/loader.h"
 
 namespace pathlab::python {
-namespace {
-
-// A scene loaded once and rendered any number of times, from any thread.
-struct Scene {
-    std::string source;
-    std::shared_ptr<const RenderScene> scene;
-    RenderDefaults defaults;
-};
-
-Scene loadPythonScene(const std::string& source, bool lenient, bool solidAngleLights) {
-    py::gil_scoped_release release;
-    SceneDescription desc = loadScene(source, {lenient});
-    const RenderDefaults defaults = desc.defaults;
-    auto scene = std::make_shared<const RenderScene>(
-        std::move(desc), solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
-    return {source, std::move(scene), defaults};
-}
-
-// The Python keywords as `pathlab render` reads its flags; None is "not given".
-struct RenderKeywords {
-    std::optional<std::string> sampler, seed, size;
-    std::optional<int64_t> spp, maxDepth;
-    int64_t rouletteDepth = kDefaultRouletteDepth, threads = 0;
-    bool russianRoulette = true;
-};
 
 RenderSettings settingsFor(const Scene& scene, const RenderKeywords& k) {
     static const RenderOptionNames names{"spp", "max_depth", "roulette_depth", "seed", "size"};
@@ -64,24 +39,17 @@ RenderSettings settingsFor(const Scene& scene, const RenderKeywords& k) {
     return s;
 }
 
-// Renders on a worker thread without the GIL while the calling thread, every
-// `interval` seconds, checks for Ctrl-C (PyErr_CheckSignals: only the main
-// thread sees signals) and calls progress(done_tiles, total_tiles). Either
-// raising stops the render at the next tile and re-raises here.
-RenderOutput renderReleased(const Scene& scene, RenderSettings settings, const py::object& progress,
-                            double interval) {
-    RenderControl control;
-    settings.control = &control;
+void runReleased(const std::function<void()>& job, RenderControl& control,
+                 const py::object& progress, double interval) {
     std::mutex mutex;
     std::condition_variable finished;
     bool done = false, raised = false;
-    std::optional<RenderOutput> out;
     std::exception_ptr error;
     {
         py::gil_scoped_release release;
         std::thread worker([&] {
             try {
-                out.emplace(render(*scene.scene, settings));
+                job();
             } catch (...) {
                 error = std::current_exception();
             }
@@ -112,16 +80,15 @@ RenderOutput renderReleased(const Scene& scene, RenderSettings settings, const p
     if (raised) throw py::error_already_set();
     if (error) std::rethrow_exception(error);
     if (!progress.is_none()) progress(control.tilesTotal.load(), control.tilesTotal.load());
-    return std::move(*out);
 }
 
-py::dict statsDict(const RenderOutput& out, const RenderSettings& s) {
+py::dict statsDict(const RenderStats& stats, const RenderSettings& s) {
     py::dict d;
-    d["seconds"] = out.stats.seconds;
-    d["paths"] = out.stats.paths;
-    d["rays"] = out.stats.rays;
-    d["shadow_rays"] = out.stats.shadowRays;
-    d["non_finite"] = out.stats.nonFinite;
+    d["seconds"] = stats.seconds;
+    d["paths"] = stats.paths;
+    d["rays"] = stats.rays;
+    d["shadow_rays"] = stats.shadowRays;
+    d["non_finite"] = stats.nonFinite;
     d["sampler"] = s.sampler;
     d["spp"] = s.samplesPerPixel;
     d["seed"] = s.seed;
@@ -129,13 +96,29 @@ py::dict statsDict(const RenderOutput& out, const RenderSettings& s) {
     return d;
 }
 
+namespace {
+
+Scene loadPythonScene(const std::string& source, bool lenient, bool solidAngleLights) {
+    py::gil_scoped_release release;
+    SceneDescription desc = loadScene(source, {lenient});
+    const RenderDefaults defaults = desc.defaults;
+    auto scene = std::make_shared<const RenderScene>(
+        std::move(desc), solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
+    return {source, std::move(scene), defaults};
+}
+
 py::object renderScene(const Scene& scene, const RenderKeywords& keywords,
                        const py::object& progress, double interval, bool withStats) {
-    const RenderSettings settings = settingsFor(scene, keywords);
-    const RenderOutput out = renderReleased(scene, settings, progress, interval);
+    RenderSettings settings = settingsFor(scene, keywords);
+    RenderControl control;
+    settings.control = &control;
+    std::optional<RenderOutput> rendered;
+    runReleased([&] { rendered.emplace(render(*scene.scene, settings)); }, control, progress,
+                interval);
+    const RenderOutput& out = *rendered;
     py::array_t<float> image = arrayFromImage(out.image);
     if (!withStats) return image;
-    py::dict stats = statsDict(out, settings);
+    py::dict stats = statsDict(out.stats, settings);
     stats["variance"] = arrayFromImage(out.varianceOfMean);
     return py::make_tuple(image, stats);
 }

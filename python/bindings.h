@@ -14,6 +14,7 @@ namespace pathlab::python {
 namespace py = pybind11;
 
 void bindRender(py::module_& m);
+void bindProgressive(py::module_& m);
 void bindMetrics(py::module_& m);
 void bindSampling(py::module_& m);
 void bindStudy(py::module_& m);

@@ -43,6 +43,7 @@ PYBIND11_MODULE(_pathlab, m) {
         }
     });
     bindRender(m);
+    bindProgressive(m);
     bindMetrics(m);
     bindSampling(m);
     bindStudy(m);

@@ -3,12 +3,16 @@
 // semantics through POST /api/settings, bad requests, and POST /api/stop.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_runner.h"
 #include "core/image.h"
+#include "sampling/spectrum.h"
 #include "view_test_util.h"
 
 namespace pathlab {
@@ -162,6 +166,116 @@ TEST(ViewServer, BadRequestsAreRefusedAndChangeNothing) {
     getJson(server.client, "/api/image?which=b", 404);  // no compare sampler
     getJson(server.client, "/api/pixel?x=32&y=0", 400);
     getJson(server.client, "/api/pixel?x=1e3&y=0", 400);
+    getJson(server.client, "/api/image?map=flip", 404);  // no reference
+    getJson(server.client, "/api/image?map=mse", 400);
+    getJson(server.client, "/api/image?map=relse&format=exr", 400);
+}
+
+// The CSV rows "index,x,y" of `pathlab points`.
+std::vector<std::pair<float, float>> csvPoints(const std::string& csv) {
+    std::vector<std::pair<float, float>> points;
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        const size_t a = line.find(','), b = line.find(',', a + 1);
+        points.emplace_back(std::stof(line.substr(a + 1, b - a - 1)),
+                            std::stof(line.substr(b + 1)));
+    }
+    return points;
+}
+
+TEST(ViewServer, PointsAreThoseOfPathlabPointsWithTheirSpectrum) {
+    const view::ViewSettings v = smallViewSettings("sobol-owen", "pmj02");
+    RunningServer server(v);
+    server.session.waitForSpp(1);
+    const auto dir = testing::scratchDirectory("view-points");
+    for (const char* which : {"a", "b"}) {
+        const json p = getJson(server.client, std::string("/api/points?pixel=5,7&dims=2,3&count=64"
+                                                          "&which=") +
+                                                  which);
+        const std::string sampler = which[0] == 'a' ? v.sampler : v.compare;
+        EXPECT_EQ(p["sampler"], sampler);
+        const auto csv = dir / "points.csv";
+        const auto cli = testing::runPathlab("points --sampler " + sampler +
+                                                 " --count 64 --dims 2,3 --pixel 5,7 "
+                                                 "--resolution 32x24 --seed 11 -o " +
+                                                 csv.string(),
+                                             dir);
+        ASSERT_EQ(cli.exitCode, 0) << cli.err;
+        const auto expected = csvPoints(testing::slurpFile(csv));
+        ASSERT_EQ(p["points"].size(), expected.size());
+        for (size_t k = 0; k < expected.size(); ++k) {
+            EXPECT_EQ(p["points"][k][0].get<float>(), expected[k].first) << sampler << " " << k;
+            EXPECT_EQ(p["points"][k][1].get<float>(), expected[k].second) << sampler << " " << k;
+        }
+        // The periodogram's zero frequency is the point count; the rings are
+        // those of `pathlab points`' spectrum of the same points.
+        std::vector<Vec2f> points;
+        for (const auto& [x, y] : expected) points.push_back({x, y});
+        const int f = p["spectrum"]["max_frequency"];
+        const auto radial = p["spectrum"]["radial"].get<std::vector<double>>();
+        EXPECT_EQ(radial, radialPowerSpectrum(points, f));
+        EXPECT_NEAR(radial[0], 64.0, 1e-9);
+        const json& image = p["spectrum_image"];
+        const int side = image["size"];
+        EXPECT_EQ(side, 2 * image["max_frequency"].get<int>() + 1);
+        ASSERT_EQ(image["log10_power"].size(), size_t(side) * side);
+        EXPECT_NEAR(image["log10_power"][side * side / 2].get<double>(), std::log10(64.0), 0.01);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ViewServer, ErrorMapsAreDrawnAgainstTheReference) {
+    view::ViewSettings v = smallViewSettings("independent");
+    v.maxSpp = 4;
+    const auto scene = view::loadViewScene(v.scene);
+    RunningServer server(
+        v, std::make_shared<const Image>(testing::renderedLike(*scene, v, "sobol-owen", 64)));
+    server.session.waitForSpp(4);
+    const auto dir = testing::scratchDirectory("view-maps");
+    std::map<std::string, std::string> pngs;
+    for (const char* map : {"image", "relse", "flip"}) {
+        const auto res = server.client.Get((std::string("/api/image?map=") + map).c_str());
+        ASSERT_TRUE(res);
+        ASSERT_EQ(res->status, 200) << map << ": " << res->body;
+        pngs[map] = res->body;
+        const auto path = dir / (std::string(map) + ".png");
+        std::ofstream(path, std::ios::binary) << res->body;
+        const Image decoded = readImage(path.string());
+        EXPECT_EQ(decoded.width, 32);
+        EXPECT_EQ(decoded.height, 24);
+    }
+    EXPECT_NE(pngs["image"], pngs["relse"]);
+    EXPECT_NE(pngs["image"], pngs["flip"]);
+    EXPECT_NE(pngs["relse"], pngs["flip"]);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ViewServer, BadPointsRequestsNameTheParameter) {
+    RunningServer server(smallViewSettings("independent"));
+    server.session.waitForSpp(1);
+    const auto refused = [&](const std::string& query, const std::string& named) {
+        const json error = getJson(server.client, "/api/points?" + query, 400);
+        ASSERT_TRUE(error.contains("error")) << query;
+        EXPECT_EQ(error["error"].get<std::string>().rfind(named, 0), 0u)
+            << query << ": " << error["error"];
+    };
+    refused("dims=0,1", "pixel is missing");
+    refused("pixel=32,0", "pixel 32,0 is outside the 32x24 image");
+    refused("pixel=3,24", "pixel 3,24 is outside");
+    refused("pixel=-1,2", "pixel must look like X,Y");
+    refused("pixel=1;2", "pixel must look like X,Y");
+    refused("pixel=1,2&dims=3,3", "dims must name two different dimensions");
+    refused("pixel=1,2&dims=3", "dims must look like I,J");
+    refused("pixel=1,2&dims=1,99999999", "dims must look like I,J");
+    refused("pixel=1,2&count=0", "count must be an integer between 1 and 4096");
+    refused("pixel=1,2&count=5000", "count must be");
+    refused("pixel=1,2&which=b", "which is b but there is no compare sampler");
+    refused("pixel=1,2&which=c", "which must be a or b");
+    const json ok = getJson(server.client, "/api/points?pixel=31,23");
+    EXPECT_EQ(ok["dims"], json::array({0, 1}));
+    EXPECT_GE(ok["count"].get<int>(), 1);
 }
 
 TEST(ViewServer, StopEndsServing) {

@@ -4,11 +4,12 @@
 // settings do not.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "metrics/image_metrics.h"
-#include "view/accumulation.h"
+#include "render/accumulation.h"
 #include "view_test_util.h"
 
 namespace pathlab {
@@ -24,7 +25,7 @@ TEST(ViewAccumulation, PassesEqualRendersOfTheirSpp) {
     for (const std::string sampler : {"sobol-owen", "pmj02"}) {  // progressive, not
         RenderSettings s;
         s.sampler = sampler, s.seed = v.seed, s.resolution = v.size, s.maxDepth = v.maxDepth;
-        view::Accumulation acc(s);
+        Accumulation acc(s);
         for (int spp : {1, 2, 4, 7}) {
             if (!acc.progressive() && spp == 7) continue;  // pmj02 passes double
             acc.advance(*scene, spp);
@@ -119,6 +120,38 @@ TEST(ViewSession, ErrorAgainstAReferenceAtPowersOfTwo) {
     }
     EXPECT_LT(points.back().mseA, points.front().mseA);
     EXPECT_TRUE(session.status().reference);
+}
+
+TEST(ViewSession, ErrorMapsOfTheFrameAgainstTheReference) {
+    // A 2×1 reference and tests whose errors are known: the relative squared
+    // error (t − r)² / (r² + ε) maps 10^-4 … 1 onto 0 … 1 by its log10.
+    Image reference(2, 1), test(2, 1);
+    reference.set(0, 0, Vec3f(1.0f)), reference.set(1, 0, Vec3f(0.5f));
+    test.set(0, 0, Vec3f(1.1f)), test.set(1, 0, Vec3f(0.5f));
+    const view::ErrorHistory history(std::make_shared<const Image>(reference));
+    const std::vector<float> relse = history.errorMap(test, view::ErrorMapKind::RelativeSquared);
+    ASSERT_EQ(relse.size(), 2u);
+    const double e = double(1.1f - 1.0f) * double(1.1f - 1.0f) / (1.0 + kRelMseEpsilon);
+    EXPECT_NEAR(relse[0], (std::log10(e) + 4) / 4, 1e-6);
+    EXPECT_EQ(relse[1], 0.0f) << "no error: the bottom of the map";
+    EXPECT_EQ(history.errorMap(reference, view::ErrorMapKind::Flip), std::vector<float>(2, 0.0f));
+
+    // The session's map of a frame is ꟻLIP's map of that image, and there is
+    // none for a scene the reference does not show.
+    view::ViewSettings v = smallViewSettings("independent");
+    const auto scene = view::loadViewScene(v.scene);
+    const auto full = std::make_shared<const Image>(renderedLike(*scene, v, "sobol-owen", 64));
+    view::ViewSession session(v, scene, 2, full);
+    const view::Frame frame = session.waitForSpp(2);
+    ASSERT_TRUE(frame.a);
+    flip::Options hdr;
+    hdr.mode = flip::Mode::Hdr;
+    EXPECT_EQ(session.errorMap(*frame.a, view::ErrorMapKind::Flip),
+              flip::evaluate(*full, *frame.a, hdr).errorMap);
+    session.update(nlohmann::json{{"width", 16}});
+    const view::Frame smaller = session.waitForSpp(1);
+    ASSERT_TRUE(smaller.a);
+    EXPECT_TRUE(session.errorMap(*smaller.a, view::ErrorMapKind::Flip).empty());
 }
 
 }  // namespace

@@ -49,9 +49,10 @@ inline Image renderedLike(const RenderScene& scene, const view::ViewSettings& v,
 
 class RunningServer {
   public:
-    explicit RunningServer(const view::ViewSettings& settings)
+    explicit RunningServer(const view::ViewSettings& settings,
+                           std::shared_ptr<const Image> reference = nullptr)
         : scene(view::loadViewScene(settings.scene)),
-          session(settings, scene, 2),
+          session(settings, scene, 2, std::move(reference)),
           server(session),
           port(server.bind("127.0.0.1", 0)),
           client("127.0.0.1", port) {

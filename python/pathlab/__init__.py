@@ -103,6 +103,28 @@ def _int_or_none(value, name):
     return min(max(value, _INT64_MIN), _INT64_MAX)
 
 
+def _render_arguments(scene, sampler, spp, seed, size, max_depth, threads, russian_roulette,
+                      roulette_depth, lenient, progress, progress_interval):
+    """render()'s keywords checked and converted: the scene and settings
+    arguments of _pathlab.render, then the progress callback and interval."""
+    threads = _int_or_none(threads, "threads")
+    roulette_depth = _int_or_none(roulette_depth, "roulette_depth")
+    interval = float(progress_interval)
+    if not interval > 0:
+        raise ValueError("progress_interval must be a positive number of seconds, got %r"
+                         % (progress_interval,))
+    if progress is not None and not callable(progress):
+        raise ValueError("progress must be callable, got %r" % (progress,))
+    if sampler is not None and not isinstance(sampler, str):
+        raise ValueError("sampler must be a sampler name (see pathlab.samplers()), got %r"
+                         % (sampler,))
+    settings = (_scene(scene, lenient), sampler, _int_or_none(spp, "spp"), _text(seed, "seed"),
+                _text(size, "size"), _int_or_none(max_depth, "max_depth"),
+                bool(russian_roulette), 2 if roulette_depth is None else roulette_depth,
+                threads or 0)
+    return settings, progress, interval
+
+
 def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, threads=None,
            russian_roulette=True, roulette_depth=None, lenient=False, progress=None,
            progress_interval=0.1, return_stats=False):
@@ -129,22 +151,10 @@ def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, 
     non_finite, the settings used and "variance" (the per-pixel variance of
     the mean, an array like the image).
     """
-    threads = _int_or_none(threads, "threads")
-    roulette_depth = _int_or_none(roulette_depth, "roulette_depth")
-    interval = float(progress_interval)
-    if not interval > 0:
-        raise ValueError("progress_interval must be a positive number of seconds, got %r"
-                         % (progress_interval,))
-    if progress is not None and not callable(progress):
-        raise ValueError("progress must be callable, got %r" % (progress,))
-    if sampler is not None and not isinstance(sampler, str):
-        raise ValueError("sampler must be a sampler name (see pathlab.samplers()), got %r"
-                         % (sampler,))
-    return _pathlab.render(
-        _scene(scene, lenient), sampler, _int_or_none(spp, "spp"), _text(seed, "seed"),
-        _text(size, "size"), _int_or_none(max_depth, "max_depth"), bool(russian_roulette),
-        2 if roulette_depth is None else roulette_depth, threads or 0, progress, interval,
-        bool(return_stats))
+    settings, progress, interval = _render_arguments(
+        scene, sampler, spp, seed, size, max_depth, threads, russian_roulette, roulette_depth,
+        lenient, progress, progress_interval)
+    return _pathlab.render(*settings, progress, interval, bool(return_stats))
 
 
 def render_progressive(scene, spp, step, **options):
@@ -152,10 +162,17 @@ def render_progressive(scene, spp, step, **options):
     be spp itself): each image is the render at that sample count, bit for
     bit what render(scene, spp=n, ...) returns.
 
-    Each yield renders from the first sample again, so the total cost is about
-    spp²/(2·step) samples per pixel; use few steps. Wrap it in tqdm for a bar:
+    Each step continues the previous one: for a progressive sampler
+    (samplers()[i]["progressive"]) only the new samples are rendered, so all
+    steps together cost about one render of spp (plus a little per step;
+    steps of at least 8 spp keep the renderer's ray packets full). Other
+    samplers render each step from the first sample again (about
+    spp²/(2·step) samples per pixel in all): use few steps with them.
+    Wrap it in tqdm for a bar:
     ``for n, img in tqdm(pathlab.render_progressive(s, 256, 32)): ...``.
-    The scene is loaded once. options are render()'s keywords.
+    The scene is loaded once. options are render()'s keywords; with
+    return_stats=True each image is (image, stats), stats of that step alone
+    (its seconds and paths) plus "continued" (did it continue the last step?).
     """
     spp = _int_or_none(spp, "spp")
     step = _int_or_none(step, "step")
@@ -163,23 +180,38 @@ def render_progressive(scene, spp, step, **options):
         raise ValueError("spp must be at least 1, got %r" % (spp,))
     if step is None or step < 1:
         raise ValueError("step must be at least 1, got %r" % (step,))
-    loaded = _scene(scene, options.pop("lenient", False))
+    return_stats = bool(options.pop("return_stats", False))
+    options["spp"] = spp
+    settings, progress, interval = _render_arguments(
+        scene, **{k: options.pop(k, v) for k, v in _RENDER_DEFAULTS.items()})
+    if options:
+        raise TypeError("render_progressive() got an unexpected keyword argument %r"
+                        % sorted(options)[0])
+    _pathlab.Progressive(*settings)  # checks the settings now, not at the first step
     counts = list(range(step, spp, step)) + [spp]
-    return _Progressive(loaded, counts, options)
+    return _Progressive(settings, counts, (progress, interval, return_stats))
+
+
+# render()'s keywords after scene, and their defaults.
+_RENDER_DEFAULTS = dict(sampler=None, spp=None, seed=None, size=None, max_depth=None,
+                        threads=None, russian_roulette=True, roulette_depth=None, lenient=False,
+                        progress=None, progress_interval=0.1)
 
 
 class _Progressive:
-    """The iterator of render_progressive; len() is the number of images."""
+    """The iterator of render_progressive; len() is the number of images.
+    Each iteration starts a new accumulation."""
 
-    def __init__(self, scene, counts, options):
-        self._scene, self._counts, self._options = scene, counts, options
+    def __init__(self, settings, counts, call):
+        self._settings, self._counts, self._call = settings, counts, call
 
     def __len__(self):
         return len(self._counts)
 
     def __iter__(self):
+        accumulation = _pathlab.Progressive(*self._settings)
         for n in self._counts:
-            yield n, render(self._scene, spp=n, **self._options)
+            yield n, accumulation.advance(n, *self._call)
 
 
 def samplers():

@@ -17,7 +17,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/seed.h"
-#include "sampling/registry.h"
+#include "sampling/pixel_points.h"
 #include "sampling/spectrum.h"
 
 namespace pathlab::cli {
@@ -56,14 +56,6 @@ std::string extensionOf(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });
     return ext;
-}
-
-// Highest frequency of the spectrum: about twice the blue-noise peak at √N,
-// limited so the DFT stays around 10^8 operations.
-int spectrumFrequency(size_t n) {
-    const int wanted = std::max(16, 2 * int(std::ceil(std::sqrt(double(n)))));
-    const int affordable = int(std::sqrt(2e8 / double(std::max<size_t>(n, 1))) / 2);
-    return std::clamp(std::min(wanted, affordable), 4, 128);
 }
 
 std::string svgDrawing(const std::vector<Vec2f>& pts, const std::vector<double>& spectrum,
@@ -195,16 +187,8 @@ void runPoints(const PointsOptions& o) {
         throw InputError("-o must end in .csv, .svg or .png, got '" + o.output + "'");
     const PointsRequest r = pointsRequest(o);
     const int i = r.dimX, j = r.dimY, px = r.pixel.x, py = r.pixel.y;
-    AnySampler sampler = makeSampler(o.sampler, SamplerConfig{r.spp, r.seed, r.resolution});
-
-    std::vector<Vec2f> pts(size_t(o.count));
-    const Vec2i pixel = r.pixel;
-    const int dimX = i, dimY = j;
-    std::visit(
-        [&](auto& s) {
-            for (int k = 0; k < o.count; ++k) pts[k] = sampleDimensions(s, pixel, k, dimX, dimY);
-        },
-        sampler);
+    const std::vector<Vec2f> pts =
+        pixelPoints({o.sampler, o.count, i, j, r.pixel, r.resolution, r.spp, r.seed});
 
     if (ext == ".csv") {
         std::string text = "index,x,y\n";

@@ -28,7 +28,7 @@ std::vector<double> ringAverage(const std::vector<double>& power, int nx, int ny
 
 }  // namespace
 
-std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int maxFrequency) {
+std::vector<double> powerSpectrum(const std::vector<Vec2f>& points, int maxFrequency) {
     const int side = 2 * maxFrequency + 1;
     std::vector<Complex> sums(size_t(side) * side, Complex(0, 0));
     std::vector<Complex> ex(side), ey(side);
@@ -51,7 +51,16 @@ std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int ma
     std::vector<double> power(sums.size());
     const double n = points.empty() ? 1.0 : double(points.size());
     for (size_t i = 0; i < sums.size(); ++i) power[i] = std::norm(sums[i]) / n;
+    return power;
+}
+
+std::vector<double> radialAverage(const std::vector<double>& power, int maxFrequency) {
+    const int side = 2 * maxFrequency + 1;
     return ringAverage(power, side, side, maxFrequency, maxFrequency, maxFrequency);
+}
+
+std::vector<double> radialPowerSpectrum(const std::vector<Vec2f>& points, int maxFrequency) {
+    return radialAverage(powerSpectrum(points, maxFrequency), maxFrequency);
 }
 
 std::vector<double> radialPowerSpectrum(const std::vector<double>& image, int w, int h) {

@@ -11,6 +11,16 @@
 
 namespace pathlab {
 
+// Point set in [0,1)²: the periodogram P(f) = |Σ_j exp(−2πi f·x_j)|² / N at
+// the integer frequencies f = (fx, fy), −maxFrequency ≤ fx, fy ≤ maxFrequency,
+// as a (2·maxFrequency + 1)² grid, row-major from (−F, −F); the zero frequency
+// (equal to N) at its centre.
+std::vector<double> powerSpectrum(const std::vector<Vec2f>& points, int maxFrequency);
+
+// The grid of powerSpectrum averaged over rings of width 1: element r is the
+// mean over round(|f|) = r, r = 0 … maxFrequency.
+std::vector<double> radialAverage(const std::vector<double>& power, int maxFrequency);
+
 // Point set in [0,1)²: P(f) = |Σ_j exp(−2πi f·x_j)|² / N over integer frequency
 // vectors f with |f| ≤ maxFrequency, averaged over rings of width 1.
 // Element r is the ring round(|f|) = r (element 0 is the DC term, equal to N).

@@ -1,5 +1,7 @@
 #include "view/error_history.h"
 
+#include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "metrics/image_metrics.h"
@@ -34,6 +36,31 @@ void ErrorHistory::measure(int spp, const Image& a, const Image* b) {
     }
     points_.push_back(p);
     while (nextSpp_ <= spp) nextSpp_ *= 2;
+}
+
+namespace {
+
+// The relative squared error as relMSE sums it (metrics/image_metrics.h),
+// per pixel, mapped to [0, 1] by its log10 over four decades.
+std::vector<float> relativeSquaredErrorMap(const Image& reference, const Image& test) {
+    std::vector<float> map(reference.pixelCount());
+    for (size_t i = 0; i < map.size(); ++i) {
+        double e = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double r = reference.rgb[3 * i + c], d = test.rgb[3 * i + c] - r;
+            e += d * d / (r * r + kRelMseEpsilon);
+        }
+        const double decades = std::log10(std::max(e / 3, 1e-30)) + 4;
+        map[i] = float(std::clamp(decades / 4, 0.0, 1.0));
+    }
+    return map;
+}
+
+}  // namespace
+
+std::vector<float> ErrorHistory::errorMap(const Image& test, ErrorMapKind kind) const {
+    if (kind == ErrorMapKind::Flip) return flip_->errorMap(test);
+    return relativeSquaredErrorMap(*reference_, test);
 }
 
 void ErrorHistory::clear() {

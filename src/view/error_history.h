@@ -13,6 +13,9 @@
 
 namespace pathlab::view {
 
+// What GET /api/image?map= shows instead of an image.
+enum class ErrorMapKind { RelativeSquared, Flip };
+
 struct ErrorPoint {
     int spp = 0;
     double mseA = 0, flipA = 0, mseB = 0, flipB = 0;  // B: 0 without a compare sampler
@@ -31,6 +34,11 @@ class ErrorHistory {
     // Measures a pass (b may be null) and appends it.
     void measure(int spp, const Image& a, const Image* b);
     void clear();  // a restart
+    // Per pixel, a value in [0, 1] for a colour map: HDR-ꟻLIP's own error
+    // (as measured), or the relative squared error (t − r)² / (r² + ε),
+    // averaged over the channels, on a log scale: 10^-4 … 1 to 0 … 1.
+    // Safe from any thread: it reads only the reference.
+    std::vector<float> errorMap(const Image& test, ErrorMapKind kind) const;
     const std::vector<ErrorPoint>& points() const { return points_; }
 
   private:

@@ -8,9 +8,11 @@
 #include <optional>
 
 #include "core/error.h"
+#include "metrics/error_map.h"
 #include "sampling/registry.h"
 #include "scene/loader.h"
 #include "view/error_history.h"
+#include "view/points_json.h"
 #include "view/status_json.h"
 #include "view/tone_map.h"
 #include "view/web_assets.h"
@@ -147,6 +149,17 @@ void ViewServer::addApiRoutes() {
                                 {"progressive", info.progressive}});
         sendJson(res, json{{"samplers", samplers}, {"scenes", builtinSceneNames()}});
     });
+    http_->Get("/api/points", [this](const httplib::Request& req, httplib::Response& res) {
+        const SessionStatus status = session_.status();
+        if (status.width == 0) return sendError(res, 404, "no image yet");
+        const PointsQuery query{param(req, "pixel", ""), param(req, "dims", "0,1"),
+                                param(req, "count", ""), param(req, "which", "a")};
+        try {
+            sendJson(res, pointsJson(status, query));
+        } catch (const InputError& e) {
+            sendError(res, 400, e.what());
+        }
+    });
     http_->Get("/api/error", [this](const httplib::Request&, httplib::Response& res) {
         const bool hasB = !session_.status().settings.compare.empty();
         sendJson(res, errorJson(session_.errorPoints(), hasB));
@@ -156,9 +169,14 @@ void ViewServer::addApiRoutes() {
 void ViewServer::addImageRoutes() {
     http_->Get("/api/image", [this](const httplib::Request& req, httplib::Response& res) {
         const std::string which = param(req, "which", "a"), format = param(req, "format", "png");
+        const std::string map = param(req, "map", "image");
         if (which != "a" && which != "b") return sendError(res, 400, "which must be a or b");
         if (format != "png" && format != "exr" && format != "pfm")
             return sendError(res, 400, "format must be png, exr or pfm");
+        if (map != "image" && map != "relse" && map != "flip")
+            return sendError(res, 400, "map must be image, relse or flip");
+        if (map != "image" && format != "png")
+            return sendError(res, 400, "map " + map + " is drawn as png only");
         const Frame frame = session_.frame();
         const std::shared_ptr<const Image>& image = which == "a" ? frame.a : frame.b;
         if (!image)
@@ -168,7 +186,9 @@ void ViewServer::addImageRoutes() {
         res.set_header("X-Pathlab-Spp", std::to_string(frame.spp));
         res.set_header("X-Pathlab-Generation", std::to_string(frame.generation));
         if (format == "png") {
-            const std::shared_ptr<const std::string> png = displayPng(frame, which == "a" ? 0 : 1);
+            const std::shared_ptr<const std::string> png =
+                displayPng(frame, which == "a" ? 0 : 1, map);
+            if (!png) return sendError(res, 404, "no reference for this image");
             res.set_content(png->data(), png->size(), "image/png");
         } else if (format == "exr") {
             res.set_content(encodeImage(*image, ImageFormat::Exr), "image/x-exr");
@@ -191,16 +211,28 @@ void ViewServer::addImageRoutes() {
     });
 }
 
-std::shared_ptr<const std::string> ViewServer::displayPng(const Frame& frame, int which) {
+std::shared_ptr<const std::string> ViewServer::displayPng(const Frame& frame, int which,
+                                                          const std::string& map) {
     const ViewSettings s = session_.status().settings;
     const std::string key = std::to_string(frame.generation) + "/" + std::to_string(frame.spp) +
-                            "/" + std::to_string(s.exposure) + "/" + toneMapName(s.toneMap);
+                            "/" + std::to_string(s.exposure) + "/" + toneMapName(s.toneMap) + "/" +
+                            map;
     {
         std::lock_guard<std::mutex> lock(pngMutex_);
         if (pngKey_[which] == key) return png_[which];
     }
     const Image& image = which == 0 ? *frame.a : *frame.b;
-    auto png = std::make_shared<const std::string>(encodeDisplayPng(image, s.exposure, s.toneMap));
+    std::shared_ptr<const std::string> png;
+    if (map == "image") {
+        png = std::make_shared<const std::string>(encodeDisplayPng(image, s.exposure, s.toneMap));
+    } else {
+        // Error maps in magma (metrics/error_map.h), as `pathlab compare --error-map`.
+        const std::vector<float> errors = session_.errorMap(
+            image, map == "flip" ? ErrorMapKind::Flip : ErrorMapKind::RelativeSquared);
+        if (errors.empty()) return nullptr;
+        png = std::make_shared<const std::string>(encodeImage(
+            errorMapImage(errors, image.width, image.height, ImageFormat::Png), ImageFormat::Png));
+    }
     std::lock_guard<std::mutex> lock(pngMutex_);
     pngKey_[which] = key, png_[which] = png;
     return png;

@@ -41,8 +41,10 @@ class ViewServer {
     void addPageRoutes();
 
     // The PNG of the last frame shown, per image (A, B): every open page
-    // asks for the same one, which is encoded once.
-    std::shared_ptr<const std::string> displayPng(const Frame& frame, int which);
+    // asks for the same one, which is encoded once. `map`: "image", or the
+    // error map "relse" or "flip" (null when there is no reference for it).
+    std::shared_ptr<const std::string> displayPng(const Frame& frame, int which,
+                                                  const std::string& map);
 
     std::mutex pngMutex_;
     std::string pngKey_[2];

@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "render/accumulation.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
-#include "view/accumulation.h"
 
 namespace pathlab::view {
 namespace {
@@ -148,6 +148,14 @@ void ViewSession::work() {
 bool ViewSession::referenceFits(const Image& image) const {
     return errors_ && settings_.scene == referenceScene_ &&
            errors_->reference().width == image.width && errors_->reference().height == image.height;
+}
+
+std::vector<float> ViewSession::errorMap(const Image& image, ErrorMapKind kind) const {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!referenceFits(image)) return {};
+    }
+    return errors_->errorMap(image, kind);  // errors_ never changes after construction
 }
 
 std::vector<ErrorPoint> ViewSession::errorPoints() const {

@@ -64,6 +64,9 @@ class ViewSession {
     Frame waitForSpp(int spp) const;
     // The error measured so far in this generation (empty without a reference).
     std::vector<ErrorPoint> errorPoints() const;
+    // The error map of `image` (one of a frame's) against the reference, or
+    // an empty vector when there is no reference for it.
+    std::vector<float> errorMap(const Image& image, ErrorMapKind kind) const;
     // Blocks until the worker waits for work (paused, done, failed).
     void waitUntilIdle() const;
 

@@ -83,6 +83,34 @@ await check("the error plot appears and grows", async () => {
   await page.waitForFunction(() => window.pathlabView.errorPoints >= 3, null, { timeout: 30000 });
   await page.screenshot({ path: path.join(artifactDir, "view-error.png") });
 });
+await check("the points panel draws the pixel's points and their spectrum", async () => {
+  const box = await page.locator("#canvas").boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.waitForFunction(() => window.pathlabView.pointsDrawn >= 1, null, { timeout: 20000 });
+  const drawn = await page.evaluate(() => {
+    const lit = (id) => {
+      const c = document.getElementById(id);
+      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) n += d[i] + d[i + 1] + d[i + 2] > 120;
+      return n;
+    };
+    return { points: lit("points_plot"), spectrum: lit("points_spectrum"),
+      caption: document.getElementById("points_caption").textContent };
+  });
+  assert.ok(drawn.points > 20, `points drawn: ${drawn.points} bright pixels`);
+  assert.ok(drawn.spectrum > 100, `spectrum drawn: ${drawn.spectrum} bright pixels`);
+  assert.match(drawn.caption, /independent at \(\d+,\d+\), dims 0, 1: \d+ points/);
+  await page.locator("#points_panel").screenshot({ path: path.join(artifactDir, "view-points.png") });
+});
+await check("the FLIP error map replaces the image when chosen", async () => {
+  const before = await updates();
+  await page.selectOption("#map", "flip");
+  await page.waitForFunction((n) => window.pathlabView.updates > n && window.pathlabView.shown.endsWith("/flip"),
+    before, { timeout: 20000 });
+  await page.screenshot({ path: path.join(artifactDir, "view-flip-map.png") });
+  await page.selectOption("#map", "image");
+});
 await check("switching the sampler through the page restarts accumulation", async () => {
   const before = await status();
   await page.waitForFunction((spp) => window.pathlabView.status.spp > spp, before.spp, { timeout: 30000 });

@@ -131,9 +131,10 @@ def test_two_python_threads_render_at_once_deterministically():
         assert all(same_bits(expected, image) for image in images)
 
 
-def test_render_progressive_yields_the_render_at_each_count():
+@pytest.mark.parametrize("sampler", ["sobol-owen", "pmj02"])  # continued, re-rendered
+def test_render_progressive_yields_the_render_at_each_count(sampler):
     scene = pathlab.load_scene("cornell-box")
-    settings = dict(SETTINGS)
+    settings = dict(SETTINGS, sampler=sampler)
     del settings["spp"]
     steps = pathlab.render_progressive(scene, spp=5, step=2, **settings)
     assert len(steps) == 3
@@ -142,6 +143,47 @@ def test_render_progressive_yields_the_render_at_each_count():
         seen.append(spp)
         assert same_bits(image, pathlab.render(scene, spp=spp, **settings))
     assert seen == [2, 4, 5]
+
+
+def test_render_progressive_continues_each_step_from_the_last():
+    """A progressive sampler's step renders only its new samples (its paths),
+    yet equals the render of the step's spp, variance included; a sampler that
+    is not progressive renders each step whole."""
+    settings = dict(SETTINGS)
+    del settings["spp"]
+    pixels = 40 * 24
+    previous = 0
+    for spp, (image, stats) in pathlab.render_progressive("cornell-box", 7, 3, return_stats=True,
+                                                          **settings):
+        assert stats["continued"] and stats["spp"] == spp
+        assert stats["paths"] == pixels * (spp - previous)
+        whole, whole_stats = pathlab.render("cornell-box", spp=spp, return_stats=True, **settings)
+        assert same_bits(image, whole)
+        assert same_bits(stats["variance"], whole_stats["variance"])
+        previous = spp
+    assert previous == 7
+    steps = pathlab.render_progressive("cornell-box", 4, 2, return_stats=True,
+                                       **dict(settings, sampler="pmj02"))
+    for spp, (_, stats) in steps:
+        assert not stats["continued"] and stats["paths"] == pixels * spp
+
+
+def test_render_progressive_iterates_again_from_the_start():
+    settings = dict(SETTINGS)
+    del settings["spp"]
+    steps = pathlab.render_progressive("cornell-box", 4, 2, **settings)
+    first, second = list(steps), list(steps)
+    assert [n for n, _ in first] == [n for n, _ in second] == [2, 4]
+    assert all(same_bits(a, b) for (_, a), (_, b) in zip(first, second))
+
+
+def test_render_progressive_refuses_bad_settings_before_the_first_step():
+    with pytest.raises(ValueError, match="max_depth must be between 0 and 1024, got 5000"):
+        pathlab.render_progressive("cornell-box", 4, 2, max_depth=5000)
+    with pytest.raises(ValueError, match="unknown sampler 'nope'"):
+        pathlab.render_progressive("cornell-box", 4, 2, sampler="nope")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'colour'"):
+        pathlab.render_progressive("cornell-box", 4, 2, colour=1)
 
 
 def test_return_stats_counts_the_paths():

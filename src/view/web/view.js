@@ -44,26 +44,39 @@ function showStatus(s) {
   $('compare').value = s.compare || '';
   $('russian_roulette').checked = s.russian_roulette;
   $('exposure_value').textContent = Number(s.exposure).toFixed(2);
+  for (const id of ['relse', 'flip']) $('map').querySelector(`[value=${id}]`).disabled = !s.reference;
+  const which = $('points_which');
+  if (s.compare && which.options.length === 1) which.add(new Option('B', 'b'));
+  if (!s.compare && which.options.length === 2) which.remove(1);
+  which.options[0].textContent = `A ${s.sampler}`;
+  if (s.compare) which.options[1].textContent = `B ${s.compare}`;
 }
 
-async function fetchImage(which) {
-  const res = await fetch(`/api/image?which=${which}&format=png&t=${Date.now()}`);
+// The display: the image, or its error against the reference (GET
+// /api/image's map).
+function mapShown(s) { return s.reference ? $('map').value : 'image'; }
+
+async function fetchImage(which, map) {
+  const res = await fetch(`/api/image?which=${which}&format=png&map=${map}&t=${Date.now()}`);
   if (!res.ok) return null;
   return createImageBitmap(await res.blob());
 }
 
 async function refreshImages(s) {
-  const key = [s.generation, s.spp, s.exposure, s.tone_map].join('/');
+  const map = mapShown(s);
+  const key = [s.generation, s.spp, s.exposure, s.tone_map, map].join('/');
   if (state.loading || key === state.shown || s.spp === 0) return;
   state.loading = true;
   try {
-    const [a, b] = await Promise.all([fetchImage('a'), s.compare ? fetchImage('b') : null]);
+    const [a, b] = await Promise.all([fetchImage('a', map),
+      s.compare ? fetchImage('b', map) : null]);
     if (a) {
       state.images = { a, b };
       state.shown = key;
       state.updates++;
       if (state.zoom === 0) fit();
       draw();
+      if (!$('points_count').value) refreshPoints(points.pixel);  // the count follows spp
     }
   } finally {
     state.loading = false;
@@ -203,6 +216,88 @@ async function showPixel(p) {
   } catch (e) { /* the image is between generations */ }
 }
 
+// The points panel: GET /api/points for the pixel under the cursor (or the
+// one pinned by a click), drawn as a scatter in [0,1)² and as the
+// periodogram of the points (log power, grey: white noise; dark: less power,
+// the hole of blue noise round the centre) with its radial average (yellow;
+// dashed: white noise, 1). One request at a time; the latest pixel wins.
+const points = { pixel: null, pinned: false, busy: false, pending: false, key: '' };
+state.pointsDrawn = 0;  // for tests
+
+function pointsQuery(p) {
+  const count = $('points_count').value;
+  return `/api/points?pixel=${p.x},${p.y}&dims=${$('points_x').value},${$('points_y').value}` +
+    `&which=${$('points_which').value}` + (count ? `&count=${count}` : '');
+}
+
+async function refreshPoints(p) {
+  if (!p) return;
+  points.pixel = p;
+  if (points.busy) { points.pending = true; return; }
+  const query = pointsQuery(p), key = `${query}/${state.shown}`;
+  if (key === points.key) return;
+  points.busy = true;
+  try {
+    const r = await api(query);
+    points.key = key;
+    drawPoints(r);
+  } catch (e) {
+    $('points_caption').textContent = e.message;
+  } finally {
+    points.busy = false;
+    if (points.pending) { points.pending = false; refreshPoints(points.pixel); }
+  }
+}
+
+function drawPoints(r) {
+  const c = $('points_plot'), g = c.getContext('2d'), W = c.width, H = c.height;
+  g.fillStyle = '#111';
+  g.fillRect(0, 0, W, H);
+  g.strokeStyle = '#555';
+  g.strokeRect(0.5, 0.5, W - 1, H - 1);
+  g.fillStyle = '#9cf';
+  const size = Math.max(1, Math.min(4, W / Math.sqrt(r.count) / 4));
+  for (const [x, y] of r.points) g.fillRect(x * W - size / 2, (1 - y) * H - size / 2, size, size);
+  drawSpectrum(r.spectrum_image, r.spectrum.radial);
+  $('points_caption').textContent = `${r.sampler} at (${r.pixel}), dims ${r.dims.join(', ')}: ` +
+    `${r.count} points${points.pinned ? ' (pinned; click to follow the cursor)' : ''}`;
+  state.pointsDrawn++;
+}
+
+function drawSpectrum(image, radial) {
+  const c = $('points_spectrum'), g = c.getContext('2d'), W = c.width, H = c.height;
+  const n = image.size, pixels = new ImageData(n, n);
+  for (let y = 0; y < n; y++) {
+    for (let x = 0; x < n; x++) {
+      // log10 power −1 … 1 as black … white, frequency y upwards.
+      const v = image.log10_power[(n - 1 - y) * n + x];
+      const grey = Math.max(0, Math.min(255, Math.round((v + 1) * 127.5))), i = 4 * (y * n + x);
+      pixels.data[i] = pixels.data[i + 1] = pixels.data[i + 2] = grey;
+      pixels.data[i + 3] = 255;
+    }
+  }
+  const tile = document.createElement('canvas');
+  tile.width = tile.height = n;
+  tile.getContext('2d').putImageData(pixels, 0, 0);
+  g.imageSmoothingEnabled = false;
+  g.drawImage(tile, 0, 0, W, H);
+  // The radial average up to the image's frequency, power 0 … 2.
+  const f = image.max_frequency, py = (v) => H - Math.min(v, 2) / 2 * H;
+  g.strokeStyle = '#ccc';
+  g.setLineDash([4, 3]);
+  g.beginPath();
+  g.moveTo(0, py(1));
+  g.lineTo(W, py(1));
+  g.stroke();
+  g.setLineDash([]);
+  g.strokeStyle = '#fd4';
+  g.beginPath();
+  for (let r = 1; r <= f && r < radial.length; r++) {
+    (r === 1 ? g.moveTo : g.lineTo).call(g, r / f * W, py(radial[r]));
+  }
+  g.stroke();
+}
+
 function onSplitLine(cx) {
   const a = state.images.a;
   return a && state.images.b && !sideBySide() &&
@@ -210,11 +305,18 @@ function onSplitLine(cx) {
 }
 
 canvas.addEventListener('mousedown', (e) => {
-  state.drag = { split: onSplitLine(e.offsetX), x: e.offsetX, y: e.offsetY };
+  state.drag = { split: onSplitLine(e.offsetX), x: e.offsetX, y: e.offsetY, moved: false };
 });
-window.addEventListener('mouseup', () => { state.drag = null; });
+window.addEventListener('mouseup', () => { state.dragged = state.drag && state.drag.moved; state.drag = null; });
+canvas.addEventListener('click', (e) => {
+  if (state.dragged) return;
+  const p = pixelAt(e.offsetX, e.offsetY);
+  points.pinned = !points.pinned && p !== null;
+  if (p) refreshPoints(p);
+});
 canvas.addEventListener('mousemove', (e) => {
   const d = state.drag;
+  if (d) d.moved = true;
   if (d && d.split) {
     const w = state.images.a.width * state.zoom;
     state.split = Math.min(1, Math.max(0, (e.offsetX - state.panX) / w));
@@ -225,7 +327,9 @@ canvas.addEventListener('mousemove', (e) => {
     draw();
   }
   canvas.style.cursor = onSplitLine(e.offsetX) ? 'ew-resize' : 'crosshair';
-  showPixel(pixelAt(e.offsetX, e.offsetY));
+  const p = pixelAt(e.offsetX, e.offsetY);
+  showPixel(p);
+  if (!points.pinned && !d) refreshPoints(p);
 });
 canvas.addEventListener('wheel', (e) => {
   e.preventDefault();
@@ -268,6 +372,9 @@ function wireControls() {
   $('pause').addEventListener('click', () => change({ paused: !state.status.paused }));
   $('reset').addEventListener('click', () => api('/api/reset', {}));
   $('layout').addEventListener('change', () => { fit(); draw(); });
+  $('map').addEventListener('change', () => state.status && refreshImages(state.status));
+  for (const id of ['points_which', 'points_x', 'points_y', 'points_count'])
+    $(id).addEventListener('change', () => refreshPoints(points.pixel));
 }
 
 async function start() {

@@ -1,9 +1,10 @@
 // One sampler's progressive render of a scene: passes that each bring every
-// pixel to a higher sample count. A progressive sampler (SamplerInfo) adds
-// only the new samples to running sums kept between passes; any other is
-// rendered afresh at the pass's count, since its first samples depend on the
-// count it was built for. Either way the image after a pass is, bit for bit,
-// `pathlab render` of the same scene, sampler, seed and spp.
+// pixel to a higher sample count (`pathlab view`, the Python module's
+// render_progressive). A progressive sampler (SamplerInfo) adds only the new
+// samples to running sums kept between passes (RenderSettings::resume); any
+// other is rendered afresh at the pass's count, since its first samples depend
+// on the count it was built for. Either way the image after a pass is, bit for
+// bit, `pathlab render` of the same scene, sampler, seed and spp.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,7 @@
 #include "core/image.h"
 #include "render/renderer.h"
 
-namespace pathlab::view {
+namespace pathlab {
 
 class Accumulation {
   public:
@@ -26,6 +27,9 @@ class Accumulation {
     bool progressive() const { return progressive_; }
     int spp() const { return spp_; }
     const Image& image() const { return image_; }
+    const Image& varianceOfMean() const { return variance_; }
+    // The last pass's statistics: its paths and time only.
+    const RenderStats& lastPass() const { return lastPass_; }
     uint64_t paths() const { return paths_; }    // traced since the start
     double seconds() const { return seconds_; }  // spent rendering since the start
 
@@ -34,9 +38,10 @@ class Accumulation {
     bool progressive_;
     RunningSums sums_;
     int spp_ = 0;
-    Image image_;
+    Image image_, variance_;
+    RenderStats lastPass_;
     uint64_t paths_ = 0;
     double seconds_ = 0;
 };
 
-}  // namespace pathlab::view
+}  // namespace pathlab

@@ -1,10 +1,10 @@
-#include "view/accumulation.h"
+#include "render/accumulation.h"
 
 #include <stdexcept>
 
 #include "sampling/registry.h"
 
-namespace pathlab::view {
+namespace pathlab {
 
 Accumulation::Accumulation(RenderSettings settings)
     : settings_(std::move(settings)), progressive_(samplerInfo(settings_.sampler).progressive) {
@@ -21,13 +21,15 @@ void Accumulation::advance(const RenderScene& scene, int targetSpp) {
     try {
         out = render(scene, s);
     } catch (const RenderCancelled&) {
-        spp_ = 0, image_ = {}, sums_ = {};  // the renderer has emptied the sums
+        spp_ = 0, image_ = {}, variance_ = {}, sums_ = {};  // the renderer has emptied the sums
         throw;
     }
     spp_ = targetSpp;
     image_ = std::move(out.image);
+    variance_ = std::move(out.varianceOfMean);
+    lastPass_ = out.stats;
     paths_ += out.stats.paths;
     seconds_ += out.stats.seconds;
 }
 
-}  // namespace pathlab::view
+}  // namespace pathlab
