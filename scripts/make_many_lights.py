@@ -5,7 +5,10 @@ varied heights, a few bright, many far and dim, some tilted, a few two-sided
 triangles, and three occluders. The scene that light selection strategies
 (uniform, power, BVH) are measured on. Deterministic: a fixed seed.
 
-usage: scripts/make_many_lights.py [OUTPUT=scenes/pbrt/many-lights.pbrt]
+With COUNT, only the first COUNT of the same lights (bench/light_selection.sh
+compares a few lights with many in the same scene).
+
+usage: scripts/make_many_lights.py [OUTPUT=scenes/pbrt/many-lights.pbrt] [COUNT=200]
 """
 import colorsys
 import math
@@ -51,14 +54,6 @@ def box(lo, hi, colour):
                                 "  ".join(fmt(q) for q in p)))
 
 
-def rotate(v, ax, az):
-    """v rotated by ax about x, then by az about z (radians)."""
-    x, y, z = v
-    y, z = y * math.cos(ax) - z * math.sin(ax), y * math.sin(ax) + z * math.cos(ax)
-    x, y = x * math.cos(az) - y * math.sin(az), x * math.sin(az) + y * math.cos(az)
-    return (x, y, z)
-
-
 def light(rng, i):
     cx, cz = rng.uniform(-10, 10), rng.uniform(-3, 17)
     cy = rng.uniform(0.8, 5.5)
@@ -73,22 +68,27 @@ def light(rng, i):
         return ('AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [%s] "bool twosided" true\n'
                 '  Shape "trianglemesh" "integer indices" [0 1 2] "point3 P" [%s]\n'
                 'AttributeEnd\n' % (fmt(rgb), "  ".join(fmt(q) for q in p)))
-    # A quad facing down: (p10 − p00) × (p01 − p00) = x × z = −y.
+    # A quad facing down: (p10 − p00) × (p01 − p00) = x × z = −y, placed by a
+    # transform so that it stays exactly planar (one bilinear patch, one light).
+    place = "Translate %s" % fmt((cx, cy, cz))
+    if tilt != (0, 0):
+        place += "  Rotate %.4g 0 0 1  Rotate %.4g 1 0 0" % (math.degrees(tilt[1]),
+                                                          math.degrees(tilt[0]))
     corners = [(-half, 0, -half), (half, 0, -half), (-half, 0, half), (half, 0, half)]
-    p = [(cx + a, cy + b, cz + c) for a, b, c in (rotate(q, *tilt) for q in corners)]
-    return ('AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [%s]\n'
+    return ('AttributeBegin\n  %s\n  AreaLightSource "diffuse" "rgb L" [%s]\n'
             '  Shape "bilinearmesh" "point3 P" [%s]\nAttributeEnd\n' %
-            (fmt(rgb), "  ".join(fmt(q) for q in p)))
+            (place, fmt(rgb), "  ".join(fmt(q) for q in corners)))
 
 
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "scenes/pbrt/many-lights.pbrt"
+    count = int(sys.argv[2]) if len(sys.argv) > 2 else LIGHTS
     rng = random.Random(20261207)
-    text = HEADER
+    text = HEADER if count == LIGHTS else HEADER.replace("200 small", "%d small" % count)
     text += box((-4, 0, 2), (-2.5, 1.2, 3.5), (0.6, 0.55, 0.5))
     text += box((1.5, 0, 5), (3, 2.2, 6), (0.4, 0.5, 0.6))
     text += box((-1, 2.5, 8), (3, 2.6, 10), (0.7, 0.7, 0.7))  # a hanging plate
-    for i in range(LIGHTS):
+    for i in range(count):
         text += light(rng, i)
     with open(out, "w") as f:
         f.write(text)
