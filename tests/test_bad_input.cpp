@@ -57,6 +57,8 @@ const BadInput kCases[] = {
      "--max-depth must be between 0 and 1024, got -3"},
     {"absurd depth", "render --scene cornell-box --max-depth 100000000000 -o {dir}/out.png",
      "out.png", "--max-depth must be between 0 and 1024, got 100000000000"},
+    {"unknown light sampler", "render --scene cornell-box --light-sampler tree -o {dir}/out.png",
+     "out.png", "--light-sampler must be one of uniform, power, bvh, got 'tree'"},
     {"negative threads", "render --scene cornell-box --threads -1 -o {dir}/out.png", "out.png",
      "threads must be between 0 (all cores) and 4096, got -1"},
     {"negative seed", "render --scene cornell-box --seed -1 -o {dir}/out.png", "out.png",
