@@ -198,7 +198,7 @@ const BadInput kCases[] = {
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
      "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
-     "roulette_depth, metrics, time_budget_seconds, reference, external)"},
+     "roulette_depth, light_sampler, metrics, time_budget_seconds, reference, external)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
      "SPEC-SAMPLER"},
     {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",
