@@ -57,6 +57,8 @@ const BadInput kCases[] = {
      "--max-depth must be between 0 and 1024, got -3"},
     {"absurd depth", "render --scene cornell-box --max-depth 100000000000 -o {dir}/out.png",
      "out.png", "--max-depth must be between 0 and 1024, got 100000000000"},
+    {"unknown light sampler", "render --scene cornell-box --light-sampler tree -o {dir}/out.png",
+     "out.png", "--light-sampler must be one of uniform, power, bvh, got 'tree'"},
     {"negative threads", "render --scene cornell-box --threads -1 -o {dir}/out.png", "out.png",
      "threads must be between 0 (all cores) and 4096, got -1"},
     {"negative seed", "render --scene cornell-box --seed -1 -o {dir}/out.png", "out.png",
@@ -202,7 +204,8 @@ const BadInput kCases[] = {
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
      "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
-     "roulette_depth, metrics, time_budget_seconds, reference, external, difficulty)"},
+     "roulette_depth, light_sampler, metrics, time_budget_seconds, reference, external, "
+     "difficulty)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",
      "SPEC-SAMPLER"},
     {"absurd spp in spec", "study {dir}/absurd-spp.toml -o {dir}/study", "study",

@@ -7,6 +7,7 @@
 #include "core/image.h"
 #include "render/render_options.h"
 #include "render/renderer.h"
+#include "scene/light_selection.h"
 #include "scene/loader.h"
 
 namespace pathlab::cli {
@@ -18,6 +19,7 @@ struct RenderOptions {
     RenderOptionValues values;
     bool noRoulette = false;
     bool solidAngleLights = false;
+    std::string lightSampler;  // "": the scene file's choice, else power
     bool lenient = false;
     // Given on the command line? Otherwise a scene file's own choice (pbrt-v4's
     // Sampler and Integrator directives) applies.
@@ -29,6 +31,7 @@ struct RenderOptions {
 void settle(RenderOptions& o) {
     o.values.russianRoulette = !o.noRoulette;
     settleRenderSettings(o.values, cliRenderOptionNames(), o.settings);
+    parseLightSelection(o.lightSampler, "--light-sampler");
 }
 
 void runRender(RenderOptions& o) {
@@ -40,6 +43,7 @@ void runRender(RenderOptions& o) {
     v.seedGiven = o.seedGiven->count() > 0, v.depthGiven = o.depthGiven->count() > 0;
     applySceneDefaults(desc.defaults, v, o.settings);
     settle(o);
+    if (!o.lightSampler.empty()) desc.defaults.lightSampler = o.lightSampler;
     RenderSettings& s = o.settings;
     s.progress = true;
     const RenderScene scene(std::move(desc),
@@ -88,6 +92,9 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_flag("--solid-angle-lights", opts->solidAngleLights,
                   "Sample rectangular lights by solid angle instead of by area");
+    cmd->add_option("--light-sampler", opts->lightSampler,
+                    "How a light is chosen for next-event estimation: uniform, power or bvh "
+                    "(default: the scene file's, else power)");
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_option("-o,--output", opts->output, "Output image (.exr linear, .png sRGB, .pfm)")

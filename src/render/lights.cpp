@@ -238,7 +238,8 @@ float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
     return areaDensity(*this, ref, p);
 }
 
-LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling strategy)
+LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling strategy,
+                   LightSelection selection)
     : punctual_(scene.punctualLights), environment_(scene.environment) {
     if (!scene.environmentMap.empty()) environmentMap_.emplace(scene.environmentMap);
     triangleLight_.resize(scene.meshes.size());
@@ -264,7 +265,8 @@ LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling str
     }
     for (AreaLight& l : lights_)
         l.solidAngleSampling = l.rectangle && strategy == LightSampling::SolidAngle;
-    buildDistribution(focus);
+    chooser_ = LightChooser(selection, powerWeights(focus), lightBounds());
+    onlyAreaLight_ = chooser_.size() == 1 && lights_.size() == 1 && !lights_[0].solidAngleSampling;
 }
 
 // Irradiance at `x` from light `l` if nothing blocked it, treating the light as
@@ -277,7 +279,8 @@ static double irradianceAt(const AreaLight& l, Vec3f x) {
     return double(luminance(l.radiance)) * l.area * cosLight / std::sqrt(dist2) / dist2;
 }
 
-void LightSet::buildDistribution(Vec3f focus) {
+// The power selection's weight of each light, in the chooser's order.
+std::vector<double> LightSet::powerWeights(Vec3f focus) const {
     std::vector<double> weight;
     double finitePower = 0, finiteIrradiance = 0;
     for (const AreaLight& l : lights_) {
@@ -321,31 +324,59 @@ void LightSet::buildDistribution(Vec3f focus) {
         for (size_t j = 0; j < infinite.size(); ++j)
             weight[infinite[j]] = infiniteWeight * (infiniteIrradiance[j] / infiniteTotal);
     }
-    double total = 0;
-    for (double w : weight) total += w;
-    if (total <= 0) return;
-    double running = 0;
-    for (double w : weight) cdf_.push_back(float((running += w) / total));
-    cdf_.back() = 1.0f;
-    onlyAreaLight_ = cdf_.size() == 1 && lights_.size() == 1 && !lights_[0].solidAngleSampling;
+    return weight;
+}
+
+// What the light BVH knows of each light (PBRT 4th ed., §12.6.3): an area
+// light's box, its power and its normal (θo = 0, or its two sides), emitting
+// over a hemisphere (θe = π/2); a point light in every direction (θo = π);
+// a spot light within its outer cone (θo the full-intensity cone, θe the
+// falloff band). Their phi is 4π·I as pbrt-v4's, so that Importance's
+// phi/d² is in proportion to the intensity. Distant lights and environments
+// have no position: nothing (the chooser samples them beside the tree).
+std::vector<std::optional<LightBounds>> LightSet::lightBounds() const {
+    std::vector<std::optional<LightBounds>> bounds;
+    for (const AreaLight& l : lights_) {
+        LightBounds b;
+        b.bounds.extend(l.p0), b.bounds.extend(l.p0 + l.e1), b.bounds.extend(l.p0 + l.e2);
+        if (l.parallelogram) b.bounds.extend(l.p0 + l.e1 + l.e2);
+        b.phi = l.power();
+        b.normals = {l.n, 1};
+        b.twoSided = l.twoSided;
+        bounds.push_back(b);
+    }
+    for (const PunctualLight& l : punctual_) {
+        if (l.type == PunctualLightType::Distant) {
+            bounds.emplace_back();
+            continue;
+        }
+        LightBounds b;
+        b.bounds.extend(l.position);
+        b.phi = 4 * kPi * luminance(l.intensity);
+        b.normals = DirectionCone::entireSphere();
+        if (l.type == PunctualLightType::Spot) {
+            b.normals = {l.direction, l.cosFalloffStart};
+            b.cosThetaE = std::cos(std::acos(std::clamp(l.cosFalloffEnd, -1.0f, 1.0f)) -
+                                   std::acos(std::clamp(l.cosFalloffStart, -1.0f, 1.0f)));
+        }
+        bounds.push_back(b);
+    }
+    while (bounds.size() < lights_.size() + punctual_.size() + (isBlack(environment_) ? 0 : 1) +
+                               (environmentMap_ ? 1 : 0))
+        bounds.emplace_back();
+    return bounds;
 }
 
 int LightSet::lightOfTriangle(unsigned mesh, unsigned triangle) const {
     return triangleLight_[mesh][triangle];
 }
 
-float LightSet::pmf(size_t i) const {
-    return cdf_[i] - (i == 0 ? 0.0f : cdf_[i - 1]);
-}
-
 std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uChoice,
                                                   Vec2f u) const {
-    if (cdf_.empty()) return std::nullopt;
-    const size_t i =
-        std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uChoice) - cdf_.begin()),
-                 cdf_.size() - 1);
-    const float choicePmf = pmf(i);
-    if (choicePmf <= 0) return std::nullopt;
+    const auto chosen = chooser_.choose(ref, ns, uChoice);
+    if (!chosen || !(chosen->pmf > 0)) return std::nullopt;
+    const size_t i = size_t(chosen->light);
+    const float choicePmf = chosen->pmf;
     if (i >= lights_.size() && i < lights_.size() + punctual_.size())
         return samplePunctual(i - lights_.size(), ref, choicePmf);
     if (environmentMap_ && i == environmentMapIndex()) {
@@ -390,7 +421,7 @@ std::optional<LightSample> LightSet::samplePunctual(size_t i, Vec3f ref, float c
 }
 
 float LightSet::pdfAreaLight(int light, Vec3f ref, Vec3f ns, Vec3f p) const {
-    return pmf(size_t(light)) * lights_[size_t(light)].pdfFrom(ref, ns, p);
+    return chooser_.pmf(ref, ns, size_t(light)) * lights_[size_t(light)].pdfFrom(ref, ns, p);
 }
 
 size_t LightSet::environmentMapIndex() const {
@@ -398,13 +429,14 @@ size_t LightSet::environmentMapIndex() const {
 }
 
 float LightSet::pdfEnvironmentMap(Vec3f dir) const {
-    if (!environmentMap_ || cdf_.empty()) return 0;
-    return pmf(environmentMapIndex()) * environmentMap_->pdf(dir);
+    if (!environmentMap_ || empty()) return 0;
+    // Lights without a position: their choice does not depend on the receiver.
+    return chooser_.pmf({}, {}, environmentMapIndex()) * environmentMap_->pdf(dir);
 }
 
 float LightSet::pdfEnvironment() const {
-    if (cdf_.empty() || isBlack(environment_)) return 0;
-    return pmf(lights_.size() + punctual_.size()) * uniformSpherePdf();
+    if (empty() || isBlack(environment_)) return 0;
+    return chooser_.pmf({}, {}, lights_.size() + punctual_.size()) * uniformSpherePdf();
 }
 
 }  // namespace pathlab

@@ -11,7 +11,8 @@
 // and spot lights by their power, distant lights, which have no finite power
 // either, by their irradiance at the focus point as the environment. An image
 // environment map (environment_light.h) is one more such light, after the
-// constant environment.
+// constant environment. That is the `power` light selection, the default; the
+// choice can also be uniform or made by a light BVH (light_sampling/).
 //
 // Lights are sampled uniformly by area unless LightSampling::SolidAngle is
 // asked for. Then a point on a rectangular light is sampled by the solid angle
@@ -31,6 +32,7 @@
 
 #include "core/math.h"
 #include "render/environment_light.h"
+#include "render/light_sampling/light_chooser.h"
 #include "render/punctual_lights.h"
 #include "render/sampling_routines.h"
 #include "scene/scene.h"
@@ -111,9 +113,14 @@ class LightSet {
   public:
     // `focus` is where the environment's share of light choices is judged.
     LightSet(const SceneDescription& scene, Vec3f focus,
-             LightSampling strategy = LightSampling::Area);
+             LightSampling strategy = LightSampling::Area,
+             LightSelection selection = LightSelection::Power);
 
-    bool empty() const { return cdf_.empty(); }
+    bool empty() const { return chooser_.size() == 0; }
+    // All lights: area lights, then punctual lights, then the environment if
+    // present, then the environment map if present — the chooser's indices.
+    size_t lightCount() const { return chooser_.size(); }
+    const LightChooser& chooser() const { return chooser_; }
     size_t areaLightCount() const { return lights_.size(); }
     const AreaLight& areaLight(int i) const { return lights_[size_t(i)]; }
     size_t punctualLightCount() const { return punctual_.size(); }
@@ -126,8 +133,8 @@ class LightSet {
     // vector when there is none). uChoice picks the light.
     // A scene lit by one area light sampled by area (the Cornell box; the wolf
     // adds an environment) takes it without the choice: its probability is
-    // cdf_[0] = 1 exactly, so the same bits, and the whole sample is inline in
-    // the integrator, where next-event estimation calls it at every vertex.
+    // probability 1 exactly whatever the selection, so the same bits, and the whole sample is
+    // inline in the integrator, where next-event estimation calls it at every vertex.
     std::optional<LightSample> sample(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const {
         if (onlyAreaLight_) return sampleByArea(lights_[0], ref, u, 1.0f);
         return sampleChosen(ref, ns, uChoice, u);
@@ -135,7 +142,7 @@ class LightSet {
     // The scene's only light, an area light sampled by area; null otherwise.
     const AreaLight* onlyAreaLight() const { return onlyAreaLight_ ? &lights_[0] : nullptr; }
     // False when there is at most one light to choose: uChoice is then never read.
-    bool choiceUsesSample() const { return cdf_.size() > 1; }
+    bool choiceUsesSample() const { return chooser_.size() > 1; }
     // Solid-angle pdf (with choice probability) with which sample(ref, ns, …)
     // reaches point p of light `light` — for MIS when a BSDF sample hits the
     // light. ref and ns must be those the light sample would have used.
@@ -152,17 +159,15 @@ class LightSet {
   private:
     std::optional<LightSample> sampleChosen(Vec3f ref, Vec3f ns, float uChoice, Vec2f u) const;
     std::optional<LightSample> samplePunctual(size_t i, Vec3f ref, float choicePmf) const;
-    float pmf(size_t i) const;
-    void buildDistribution(Vec3f focus);
+    std::vector<double> powerWeights(Vec3f focus) const;
+    std::vector<std::optional<LightBounds>> lightBounds() const;
     std::vector<AreaLight> lights_;
     std::vector<std::vector<int>> triangleLight_;  // per mesh, per triangle
     std::vector<PunctualLight> punctual_;
     std::optional<EnvironmentLight> environmentMap_;
-    size_t environmentMapIndex() const;  // in cdf_
+    size_t environmentMapIndex() const;  // in chooser_
     Vec3f environment_;
-    // Over area lights, then punctual lights, then the environment if present,
-    // then the environment map if present.
-    std::vector<float> cdf_;
+    LightChooser chooser_;
     bool onlyAreaLight_ = false;  // lights_[0] is the only light, sampled by area
 };
 

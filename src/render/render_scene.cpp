@@ -26,7 +26,9 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     // Float spacing near the scene's largest coordinate, with a safety factor
     // (setupInstances may raise it).
     epsilon_ = extent * 2e-5f;
-    lights_ = std::make_unique<LightSet>(desc_, desc_.camera.target, lightSampling);
+    lights_ = std::make_unique<LightSet>(
+        desc_, desc_.camera.target, lightSampling,
+        parseLightSelection(desc_.defaults.lightSampler, "the light sampler"));
     triangleNormals_.resize(desc_.meshes.size());
     for (size_t m = 0; m < desc_.meshes.size(); ++m)
         triangleNormals_[m] = faceNormals(desc_.meshes[m]);

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "scene/light_selection.h"
 #include "scene/mesh_utils.h"
 #include "scene/obj_loader.h"
 #include "scene/texture_loader.h"
@@ -644,7 +645,7 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     const Context ctx{source, baseDir};
     const Node root(j, "", ctx);
     root.keys({"name", "credit", "camera", "resolution", "environment", "environmentMap",
-               "materials", "meshes", "lights", "spheres"});
+               "materials", "meshes", "lights", "spheres", "lightSampler"});
     Builder b;
     SceneDescription& s = b.scene;
     s.name = root.has("name") ? root["name"].string() : fs::path(source).stem().string();
@@ -669,6 +670,13 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
     }
     if (root.has("environment")) s.environment = root["environment"].colour();
     if (root.has("environmentMap")) parseEnvironmentMap(root["environmentMap"], b);
+    if (root.has("lightSampler")) {
+        const Node ls = root["lightSampler"];
+        s.defaults.lightSampler = ls.string();
+        if (!lightSelectionNamed(s.defaults.lightSampler))
+            ls.fail(std::string("expected one of ") + lightSelectionNames() + ", got '" +
+                    s.defaults.lightSampler + "'");
+    }
 
     if (root.has("materials")) {
         struct MixName {
@@ -755,6 +763,7 @@ std::string sceneToJson(const SceneDescription& s) {
                    {"fovY", shortest(s.camera.fovY)}};
     j["resolution"] = {s.resolution.x, s.resolution.y};
     j["environment"] = toJson(s.environment);
+    if (!s.defaults.lightSampler.empty()) j["lightSampler"] = s.defaults.lightSampler;
     // Material names must be unique keys; repeated names get their index appended.
     std::vector<std::string> names;
     std::set<std::string> used;

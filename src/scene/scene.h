@@ -76,7 +76,7 @@ struct Material {
     int roughnessTexture = -1, roughnessVTexture = -1;
     bool remapRoughness = true;
     int amountTexture = -1;  // mix
-    Coating coating{};  // CoatedDiffuse, CoatedConductor
+    Coating coating{};       // CoatedDiffuse, CoatedConductor
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat
@@ -171,6 +171,11 @@ struct RenderDefaults {
     bool hasSeed = false;
     uint64_t seed = 0;
     int maxDepth = -1;  // -1 = unset
+    // How next-event estimation chooses a light: "uniform", "power" or "bvh"
+    // (render/light_sampling/light_chooser.h); "" = unset, power. pbrt-v4
+    // files have no directive for it (pbrt's --lightsampler is a command-line
+    // option); pathlab's JSON key "lightSampler" and --light-sampler set it.
+    std::string lightSampler;
 };
 
 // A group of shapes defined once (pbrt-v4's ObjectBegin … ObjectEnd) and

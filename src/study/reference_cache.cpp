@@ -125,6 +125,8 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     h.integer(uint64_t(spec.reference.spp));
     h.text(spec.reference.sampler);
     h.integer(spec.reference.seed);
+    // Only when set, so that the keys of studies without it stay as they were.
+    if (!spec.lightSampler.empty()) h.text("light_sampler " + spec.lightSampler);
     return h.hex();
 }
 

@@ -186,6 +186,7 @@ std::vector<SceneJob> loadScenes(const StudySpec& spec) {
             if (s.origin.empty()) throw;
             throw InputError(s.origin + " names a scene that cannot be loaded: " + e.what());
         }
+        if (!spec.lightSampler.empty()) description.defaults.lightSampler = spec.lightSampler;
         const std::string key = referenceCacheKey(description, s, spec);
         const std::string hash = sceneContentHash(description, s);
         SceneJob job{s, std::make_unique<RenderScene>(std::move(description)), key, hash, {}, 0};

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "sampling/registry.h"
+#include "scene/light_selection.h"
 #include "scene/loader.h"
 
 namespace pathlab {
@@ -281,8 +282,8 @@ std::vector<ExternalSpec> SpecReader::externals(const toml::node& n,
 StudySpec readSpec(const toml::table& t, const SpecReader& in) {
     in.onlyKeys(t, "",
                 {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
-                 "russian_roulette", "roulette_depth", "metrics", "time_budget_seconds",
-                 "reference", "external", "difficulty"});
+                 "russian_roulette", "roulette_depth", "light_sampler", "metrics",
+                 "time_budget_seconds", "reference", "external", "difficulty"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
         s.name = in.string(*v, "name");
@@ -300,6 +301,13 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
         s.russianRoulette = in.boolean(*v, "russian_roulette");
     if (const toml::node* v = t.get("roulette_depth"))
         s.rouletteDepth = int(in.integer(*v, "roulette_depth", 0, 1024));
+    if (const toml::node* v = t.get("light_sampler")) {
+        s.lightSampler = in.string(*v, "light_sampler");
+        if (!lightSelectionNamed(s.lightSampler))
+            in.fail(v->source(), "light_sampler",
+                    std::string("must be one of ") + lightSelectionNames() + ", got '" +
+                        s.lightSampler + "'");
+    }
     if (const toml::node* v = t.get("metrics"))
         s.metrics = in.names(*v, "metrics", knownStudyMetrics(), "metric");
     if (const toml::node* v = t.get("time_budget_seconds"))
@@ -386,8 +394,9 @@ std::string studySpecToToml(const StudySpec& s) {
         << "resolution = [" << s.resolution.x << ", " << s.resolution.y << "]\n"
         << "max_depth = " << s.maxDepth << "\n"
         << "russian_roulette = " << (s.russianRoulette ? "true" : "false") << "\n"
-        << "roulette_depth = " << s.rouletteDepth << "\n"
-        << "metrics = " << tomlArray(s.metrics, str) << "\n";
+        << "roulette_depth = " << s.rouletteDepth << "\n";
+    if (!s.lightSampler.empty()) out << "light_sampler = " << quoted(s.lightSampler) << "\n";
+    out << "metrics = " << tomlArray(s.metrics, str) << "\n";
     if (s.timeBudgetSeconds)
         out << "time_budget_seconds = " << nlohmann::json(*s.timeBudgetSeconds).dump() << "\n";
     out << "\n[reference]\n"
@@ -427,6 +436,7 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.maxDepth != b.maxDepth) return "max_depth";
     if (a.russianRoulette != b.russianRoulette) return "russian_roulette";
     if (a.rouletteDepth != b.rouletteDepth) return "roulette_depth";
+    if (a.lightSampler != b.lightSampler) return "light_sampler";
     if (a.metrics != b.metrics) return "metrics";
     if (a.timeBudgetSeconds != b.timeBudgetSeconds) return "time_budget_seconds";
     if (a.reference.spp != b.reference.spp) return "reference.spp";

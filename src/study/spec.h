@@ -60,6 +60,10 @@ struct StudySpec {
     int maxDepth = 8;
     bool russianRoulette = true;
     int rouletteDepth = kDefaultRouletteDepth;  // bounces before roulette may end a path
+    // How next-event estimation chooses a light in every render of the study,
+    // the reference's included: uniform, power or bvh; "" = each scene's own
+    // (power unless its file says otherwise).
+    std::string lightSampler;
     ReferenceSpec reference;
     std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
     std::optional<double> timeBudgetSeconds;
