@@ -52,11 +52,12 @@ TEST(SamplerQuality, LowDiscrepancySamplersBeatIndependentAtN256) {
         mean[name] = sum / kSeeds;
         std::printf("  %-12s %.5f\n", name.c_str(), mean[name]);
     }
-    for (const char* name : {"halton", "halton-rd", "halton-owen", "stratified", "sobol",
-                             "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02"})
+    for (const char* name :
+         {"halton", "halton-rd", "halton-owen", "stratified", "sobol", "sobol-xor",
+          "sobol-global-owen", "sobol-owen", "zsobol", "sobol-bluenoise", "pmj02"})
         EXPECT_LT(mean[name], mean["independent"]) << name;
     // The (0,2) samplers are far better than random: at least 5x.
-    for (const char* name : {"sobol-owen", "zsobol", "pmj02"})
+    for (const char* name : {"sobol-owen", "zsobol", "sobol-bluenoise", "pmj02"})
         EXPECT_LT(5 * mean[name], mean["independent"]) << name;
 }
 
@@ -138,7 +139,7 @@ TEST(SamplerQuality, ConvergenceSlopes) {
         }
     // Owen-scrambled (0,2) sequences: N^-3/2 for smooth integrands (Owen
     // 1997); about N^-3/4 for a discontinuity along a curve.
-    for (const char* name : {"sobol-owen", "zsobol", "pmj02"}) {
+    for (const char* name : {"sobol-owen", "zsobol", "sobol-bluenoise", "pmj02"}) {
         EXPECT_LE(slope[name]["gaussian"], -1.25) << name;
         EXPECT_LE(slope[name]["disk"], -0.65) << name;
     }

@@ -83,7 +83,7 @@ TEST(SamplerRender, ScreenSpaceSamplersGiveBlueNoiseErrorAtOneSpp) {
     s.seed = 77;
     const Image reference = render(scene, s).image;
     s.samplesPerPixel = 1;
-    for (const char* name : {"independent", "zsobol", "blue-noise"}) {
+    for (const char* name : {"independent", "zsobol", "blue-noise", "sobol-bluenoise"}) {
         s.sampler = name;
         double ratio = 0;
         for (uint64_t seed : {1, 2, 3}) {  // average out the periodogram's own noise

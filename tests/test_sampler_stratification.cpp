@@ -31,8 +31,8 @@ using testing::drawPoints;
 }
 
 TEST(SamplerStratification, SobolOwenSobolAndPmj02AreZeroMTwoNets) {
-    for (const char* name :
-         {"sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02"})
+    for (const char* name : {"sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol",
+                             "sobol-bluenoise", "pmj02"})
         for (int m = 1; m <= 10; ++m)
             for (uint64_t seed : {0, 1, 2}) {
                 const int n = 1 << m;
@@ -40,7 +40,8 @@ TEST(SamplerStratification, SobolOwenSobolAndPmj02AreZeroMTwoNets) {
                 // pair of an image pixel (dims 6,7 = bounceBase(0) + 4, + 5).
                 EXPECT_TRUE(isZeroMTwoNet(drawPoints(name, n, 0, 1, seed)))
                     << name << " dims 0,1 N=" << n << " seed " << seed;
-                if (std::string(name).starts_with("sobol") && name != std::string("sobol-owen"))
+                if (std::string(name).starts_with("sobol") && name != std::string("sobol-owen") &&
+                    name != std::string("sobol-bluenoise"))
                     continue;  // global sequences: a pixel's points are not a net there
                 EXPECT_TRUE(isZeroMTwoNet(drawPoints(name, n, 6, 7, seed, {5, 9}, {64, 64})))
                     << name << " dims 6,7 N=" << n << " seed " << seed;
@@ -76,7 +77,7 @@ TEST(SamplerStratification, GlobalSobolDimensionsAreStratifiedAfterScrambling) {
 TEST(SamplerStratification, ProgressivePrefixesStayNets) {
     // The first 2^k of 2^10 samples of a pixel are themselves a (0,k,2)-net.
     // ZSobol permutes base-4 digits, so only its 4^k prefixes are nets.
-    for (const std::string name : {"sobol-owen", "pmj02", "zsobol"}) {
+    for (const std::string name : {"sobol-owen", "pmj02", "zsobol", "sobol-bluenoise"}) {
         const auto pts = drawPoints(name, 1024, 6, 7, 4, {3, 3}, {16, 16});
         for (int k = name == "zsobol" ? 2 : 1; k <= 10; k += name == "zsobol" ? 2 : 1)
             EXPECT_TRUE(isZeroMTwoNet({pts.begin(), pts.begin() + (1 << k)})) << name << " k=" << k;

@@ -55,6 +55,11 @@ const std::vector<Entry>& entries() {
         {{"zsobol", "Morton-ordered Owen-scrambled Sobol', blue-noise error (Ahmed & Wonka 2020)",
           2, true, false},
          maker<ZSobolSampler>()},
+        {{"sobol-bluenoise",
+          "Owen-scrambled Sobol' with per-pixel keys optimised for blue-noise error (Heitz et al. "
+          "2019)",
+          2, true, true},
+         maker<SobolBlueNoiseSampler>()},
         {{"pmj02", "progressive multi-jittered (0,2) sequences, padded per dimension pair", 2, true,
           false},
          maker<Pmj02Sampler>()},

@@ -15,6 +15,7 @@
 #include "sampling/pmj02.h"
 #include "sampling/sampler.h"
 #include "sampling/sobol.h"
+#include "sampling/sobol_bluenoise.h"
 #include "sampling/standard.h"
 #include "sampling/stratified.h"
 
@@ -24,7 +25,7 @@ using AnySampler =
     std::variant<StandardSampler, HaltonSampler, RandomDigitHaltonSampler, OwenHaltonSampler,
                  BlueNoiseSampler, IndependentSampler, StratifiedSampler, SobolSampler,
                  XorSobolSampler, GlobalOwenSobolSampler, OwenSobolSampler, ZSobolSampler,
-                 Pmj02Sampler>;
+                 SobolBlueNoiseSampler, Pmj02Sampler>;
 
 struct SamplerInfo {
     std::string name;

@@ -1,0 +1,30 @@
+// How long `sobol-bluenoise`'s optimiser takes to arrange its key tile (what
+// the first use on a machine pays before the tile is cached), for the
+// shipped settings and a few cheaper and dearer ones (docs/samplers.md).
+#include <benchmark/benchmark.h>
+
+#include "sampling/sobol_bluenoise_keys.h"
+
+namespace pathlab {
+namespace {
+
+void optimise(benchmark::State& state) {
+    // The settings defaultSobolBlueNoiseKeys() ships (sobol_bluenoise_keys.cpp).
+    SobolBlueNoiseOptimizer settings;
+    settings.levels = 4;
+    settings.integrands = 24;
+    settings.sigma = 2.0;
+    settings.swapRadius = 8;
+    settings.passes = int(state.range(0));
+    for (auto _ : state) benchmark::DoNotOptimize(optimizeSobolBlueNoiseKeys(settings).key.data());
+}
+BENCHMARK(optimise)
+    ->Name("SobolBlueNoise/optimise128/passes")
+    ->Arg(0)
+    ->Arg(40)
+    ->Arg(160)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+}  // namespace pathlab
