@@ -271,7 +271,7 @@ TEST_F(CompareCli, ErrorSpectrumAsCsvPngAndJson) {
 
 TEST_F(CompareCli, ErrorSpectrumTargetIsCheckedBeforeTheWork) {
     const std::string a = writePattern("a.exr", 8, 8, 0.0f);
-    for (const std::string target : {path("s.txt"), path("missing/s.csv"), path("s")}) {
+    for (const std::string& target : {path("s.txt"), path("missing/s.csv"), path("s")}) {
         const CliResult r = run(a + " " + a + " --error-spectrum " + target);
         EXPECT_EQ(r.exitCode, 2) << target;
         EXPECT_EQ(countLines(r.err), 1) << r.err;

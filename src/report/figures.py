@@ -17,7 +17,7 @@ from matplotlib.patches import Rectangle  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 # Colour-blind-aware and distinct; the presentation's five are drawn solid,
-# the pbrt-v4 family dashed, so thirteen lines stay tellable apart.
+# the pbrt-v4 family dashed, so fourteen lines stay tellable apart.
 PALETTE = {
     "standard": "#4d4d4d",
     "halton": "#1f77b4",
@@ -31,6 +31,7 @@ PALETTE = {
     "sobol-global-owen": "#a05a2c",
     "sobol-owen": "#d62728",
     "zsobol": "#e377c2",
+    "sobol-bluenoise": "#00a087",
     "pmj02": "#7f7f00",
 }
 MARKERS = "os^Dv<>pPhX*d"

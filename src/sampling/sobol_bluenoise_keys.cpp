@@ -281,15 +281,7 @@ std::shared_ptr<const SobolBlueNoiseKeys> defaultSobolBlueNoiseKeys() {
     static std::shared_ptr<const SobolBlueNoiseKeys> keys;
     static std::once_flag once;
     std::call_once(once, [] {
-        // Chosen by measuring the tile's low-frequency error power at 1–256
-        // spp against the optimiser's time (docs/samplers.md): spp up to 16,
-        // 24 steps, a wider kernel and 40 proposals per pixel, about 3 s.
-        SobolBlueNoiseOptimizer settings;
-        settings.levels = 4;
-        settings.integrands = 24;
-        settings.passes = 40;
-        settings.sigma = 2.0;
-        settings.swapRadius = 8;
+        const SobolBlueNoiseOptimizer settings;
         keys = loadOrCreateSobolBlueNoiseKeys(
             cacheDirectory() / ("sobol-bluenoise-keys-" + std::to_string(settings.size) + ".bin"),
             settings);

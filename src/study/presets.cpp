@@ -51,9 +51,10 @@ StudySpec fullPreset() {
     StudySpec s;
     s.name = "full";
     s.scenes = {{"cornell-box", "cornell-box"}, {"wolf", "wolf"}};
-    s.samplers = {"standard",    "halton",     "halton-rd", "halton-owen", "blue-noise",
-                  "independent", "stratified", "sobol",     "sobol-xor",   "sobol-global-owen",
-                  "sobol-owen",  "zsobol",     "pmj02"};
+    s.samplers = {
+        "standard",    "halton",     "halton-rd",       "halton-owen", "blue-noise",
+        "independent", "stratified", "sobol",           "sobol-xor",   "sobol-global-owen",
+        "sobol-owen",  "zsobol",     "sobol-bluenoise", "pmj02"};
     s.spp = powersOfTwo(4096);
     s.seeds = 8;
     s.resolution = {512, 512};
