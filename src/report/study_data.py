@@ -11,10 +11,12 @@ import os
 import sqlite3
 from collections import defaultdict
 
-# The canonical sampler order: the presentation's five, then pbrt-v4's.
+# The canonical sampler order, the registry's: the presentation's five, then
+# pbrt-v4's and those of recent papers.
 SAMPLER_ORDER = [
     "standard", "halton", "halton-rd", "halton-owen", "blue-noise", "independent",
-    "stratified", "sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol", "pmj02",
+    "stratified", "sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol",
+    "sobol-bluenoise", "pmj02",
 ]
 
 

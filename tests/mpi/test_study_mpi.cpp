@@ -151,10 +151,10 @@ TEST(MpiStudy, RankKilledThenResumeFinishesEveryCellOnce) {
     ::waitpid(mpirun, &status, 0);
     const std::string log = testing::slurpFile(dir / "killed.log");
     ASSERT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "finished before the kill";
-    // mpirun names the rank that died; rank 0 names what it was rendering.
+    // mpirun names the rank that died; rank 0 names what was in flight (its
+    // own render too when it has one, which this kill's timing cannot force).
     EXPECT_NE(log.find("process rank 1"), std::string::npos) << log;
     EXPECT_NE(log.find("rank 1: cornell-box"), std::string::npos) << log;
-    EXPECT_NE(log.find("rank 0: cornell-box"), std::string::npos) << "its own render: " << log;
     std::map<CellKey, CellRow> before = byKey(testing::readCells(out));
     ASSERT_LT(before.size(), 42u);
 
