@@ -12,12 +12,23 @@ Schott glasses from refractiveindex.info (CC0). Only numbers computed from the
 tables are written out; the tables themselves are not copied.
 
 Method:
-  * metals (eta and k separately): the spectrum s(λ) is projected onto CIE XYZ
-    under illuminant D65, X = ∫ s x̄ D65 dλ / ∫ ȳ D65 dλ (likewise Y, Z), at 1 nm
+  * metals: what a renderer sees of a metal is its Fresnel reflectance F(θ, λ),
+    not η and k, and F is far from linear in them, so reducing η and k to RGB
+    separately tints the metal (gold: red −4.6%, blue +3.6% at normal
+    incidence). Instead the spectral reflectance F(θ, λ) of the measured η, k
+    (unpolarised conductor Fresnel) is reduced to linear sRGB at each of 32
+    Gauss–Legendre nodes in cos θ, and per channel the (η, k) pair whose Fresnel
+    curve fits those 32 values best is found, weighted by cos θ (the projected
+    solid angle a diffuse-like illumination gives each direction; Gulbrandsen
+    2014 argues the same for artist-friendly metallic Fresnel). A spectral
+    reduction is X = ∫ s x̄ D65 dλ / ∫ ȳ D65 dλ (likewise Y, Z), at 1 nm
     steps over 360–830 nm, and XYZ goes to linear sRGB with the sRGB (D65)
-    matrix. A constant spectrum c therefore becomes (c, c, c). Outside a table's
+    matrix; a constant spectrum c becomes (c, c, c). Outside a table's
     wavelength range the spectrum is 0, as pbrt-v4's piecewise-linear spectra
-    are.
+    are. A reflectance outside the sRGB gamut (gold's red is 1.02) cannot be
+    reached by any (η, k): the fit comes as close as Fresnel allows.
+    MgO and TiO2 (k < 1 everywhere: dielectrics) keep η and k projected one by
+    one.
   * glasses: the index at the helium d line, 587.56 nm (the catalogue's n_d),
     by linear interpolation in the table.
 
@@ -70,6 +81,49 @@ def to_rgb(spectrum, lam, cmf, illum):
     return np.maximum(XYZ_TO_SRGB @ xyz, 0.0)
 
 
+def conductor_fresnel(eta, k, cos_theta):
+    """Unpolarised Fresnel reflectance of a conductor of complex index η + ik."""
+    n = eta + 1j * k
+    sin2 = 1.0 - cos_theta * cos_theta
+    cos_t = np.sqrt(1.0 - sin2 / (n * n))
+    rs = (cos_theta - n * cos_t) / (cos_theta + n * cos_t)
+    rp = (n * cos_theta - cos_t) / (n * cos_theta + cos_t)
+    return 0.5 * (np.abs(rs) ** 2 + np.abs(rp) ** 2)
+
+
+def fit_eta_k(cosines, weights, target):
+    """(η, k) minimising Σ w (F(η, k, cos) − target)², by a coarse grid in
+    (log η, k) refined four times around the best node. η stays at or above
+    0.05 (silver, the lowest of the tables, is 0.05 in blue) and k at or above
+    1, as for every metal in the visible: unbounded, an out-of-gamut target
+    drives k to 0 and η towards 0, a dielectric in total reflection."""
+    log_eta, k_range = (np.log(0.05), 2.0), (1.0, 12.0)
+    best = None
+    for _ in range(5):
+        le = np.linspace(*log_eta, 61)
+        kk = np.linspace(*k_range, 61)
+        E, K = np.meshgrid(np.exp(le), kk, indexing="ij")
+        F = conductor_fresnel(E[..., None], K[..., None], cosines)
+        err = np.sum(weights * (F - target) ** 2, axis=-1)
+        i, j = np.unravel_index(np.argmin(err), err.shape)
+        best = (E[i, j], K[i, j])
+        dle, dk = (log_eta[1] - log_eta[0]) / 10, (k_range[1] - k_range[0]) / 10
+        log_eta = (le[i] - dle, le[i] + dle)
+        k_range = (max(kk[j] - dk, 1.0), kk[j] + dk)
+    return best
+
+
+def metal_rgb(eta_spectrum, k_spectrum, lam, cmf, illum):
+    nodes, gl_weights = np.polynomial.legendre.leggauss(32)
+    cosines = 0.5 * (nodes + 1.0)
+    weights = gl_weights * cosines
+    reflectance = np.array([
+        to_rgb(conductor_fresnel(np.maximum(eta_spectrum, 1e-4), k_spectrum, c), lam, cmf, illum)
+        for c in cosines])  # [cos, channel]
+    fits = [fit_eta_k(cosines, weights, reflectance[:, c]) for c in range(3)]
+    return np.array([f[0] for f in fits]), np.array([f[1] for f in fits])
+
+
 def main():
     t = read_tables(sys.argv[1])
     lam = t["CIE_lambda"]
@@ -79,8 +133,11 @@ def main():
     assert np.allclose(white, 1, atol=2e-3), white
     print("// metals: name, eta RGB, k RGB")
     for m in METALS:
-        eta = to_rgb(piecewise(t[m + "_eta"], lam), lam, cmf, illum)
-        k = to_rgb(piecewise(t[m + "_k"], lam), lam, cmf, illum)
+        eta_s, k_s = piecewise(t[m + "_eta"], lam), piecewise(t[m + "_k"], lam)
+        if np.max(k_s) > 1.0:
+            eta, k = metal_rgb(eta_s, k_s, lam, cmf, illum)
+        else:  # MgO, TiO2: dielectrics, nothing to fit
+            eta, k = to_rgb(eta_s, lam, cmf, illum), to_rgb(k_s, lam, cmf, illum)
         print('{"%s", {%.4ff, %.4ff, %.4ff}, {%.4ff, %.4ff, %.4ff}},' % ((m,) + tuple(eta) + tuple(k)))
     print("// glasses: name, n at %.2f nm" % D_LINE_NM)
     for name, table in GLASSES.items():
