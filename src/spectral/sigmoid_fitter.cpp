@@ -9,7 +9,7 @@ namespace {
 
 constexpr double kRange = double(kLambdaMax) - double(kLambdaMin);
 constexpr int kMaxIterations = 15;
-constexpr double kConverged = 1e-6;
+constexpr double kConverged = 1e-6, kSmallestStep = 1e-3;
 // Coefficients beyond this make the sigmoid a step the quadrature cannot
 // resolve; the paper's implementation bounds them the same way.
 constexpr double kMaxCoefficient = 200;
@@ -83,22 +83,42 @@ Vec3d SigmoidFitter::rgbOf(const SigmoidCoefficients& c, Mat3d* jacobian) const 
 double SigmoidFitter::fit(const Vec3d& rgb, SigmoidCoefficients& c) const {
     Mat3d unused;
     const Vec3d targetLab = labWithJacobian(multiply(rgbToXyz_, rgb), whiteXyz_, unused);
-    double error = 0;
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    // The L*a*b* residual at x and its Jacobian with respect to x.
+    auto residual = [&](const SigmoidCoefficients& x, Mat3d& jacobian) {
         Mat3d dRgb, dLab;
-        const Vec3d lab = labWithJacobian(multiply(rgbToXyz_, rgbOf(c, &dRgb)), whiteXyz_, dLab);
-        const Vec3d r{lab[0] - targetLab[0], lab[1] - targetLab[1], lab[2] - targetLab[2]};
-        error = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-        if (error < kConverged) break;
+        const Vec3d lab = labWithJacobian(multiply(rgbToXyz_, rgbOf(x, &dRgb)), whiteXyz_, dLab);
+        jacobian = multiply(multiply(dLab, rgbToXyz_), dRgb);
+        return Vec3d{lab[0] - targetLab[0], lab[1] - targetLab[1], lab[2] - targetLab[2]};
+    };
+    auto norm = [](const Vec3d& r) { return std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]); };
+    Mat3d jacobian;
+    Vec3d r = residual(c, jacobian);
+    double error = norm(r);
+    for (int iteration = 0; iteration < kMaxIterations && error >= kConverged; ++iteration) {
         Vec3d step;
-        if (!solve3(multiply(multiply(dLab, rgbToXyz_), dRgb), r, step)) break;
-        double largest = 0;
-        for (int j = 0; j < 3; ++j) {
-            c[j] -= step[j];
-            largest = std::max(largest, std::abs(c[j]));
+        if (!solve3(jacobian, r, step)) break;
+        // Backtracking: far from the solution the full Gauss–Newton step can
+        // overshoot into the sigmoid's flat tails, where it never returns;
+        // halve it until the error falls. No fall at all: stalled (a colour
+        // the bounded sigmoids cannot reach).
+        bool improved = false;
+        for (double t = 1; t > kSmallestStep && !improved; t *= 0.5) {
+            SigmoidCoefficients trial;
+            double largest = 0;
+            for (int j = 0; j < 3; ++j) {
+                trial[j] = c[j] - t * step[j];
+                largest = std::max(largest, std::abs(trial[j]));
+            }
+            if (largest > kMaxCoefficient)
+                for (double& x : trial) x *= kMaxCoefficient / largest;
+            Mat3d trialJacobian;
+            const Vec3d trialR = residual(trial, trialJacobian);
+            if (norm(trialR) < error) {
+                c = trial, r = trialR, jacobian = trialJacobian, error = norm(trialR);
+                improved = true;
+            }
         }
-        if (largest > kMaxCoefficient)
-            for (double& cj : c) cj *= kMaxCoefficient / largest;
+        if (!improved) break;
     }
     return error;
 }
