@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -134,6 +135,14 @@ TEST(SpectralRgbTable, DefaultTableRoundTripsTheGamut) {
         check(Vec3f(0.02f, 0.02f, 0.02f) +
               0.88f * Vec3f(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()));
     EXPECT_LT(worst, 1e-3) << worstColour.x << " " << worstColour.y << " " << worstColour.z;
+}
+
+TEST(SpectralRgb, OutOfRangeColoursAreClamped) {
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(0.4f);
+    const SampledSpectrum black = albedoSpectrum(Vec3f(std::nanf(""), -1.f, 0.f), w);
+    EXPECT_TRUE(black.isBlack());
+    const SampledSpectrum white = albedoSpectrum(Vec3f(2.f, 1.f, 5.f), w);
+    for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_EQ(white[i], 1.f);
 }
 
 TEST(SpectralRgb, AlbedoSpectraAreReflectances) {

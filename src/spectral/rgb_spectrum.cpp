@@ -13,8 +13,9 @@ float SigmoidPolynomial::maxValue() const {
 }
 
 SigmoidPolynomial rgbToSigmoid(Vec3f rgb) {
-    const Vec3f clamped(std::clamp(rgb.x, 0.f, 1.f), std::clamp(rgb.y, 0.f, 1.f),
-                        std::clamp(rgb.z, 0.f, 1.f));
+    // To [0, 1], NaN to 0 (the table's indices are integers made from these).
+    auto unit = [](float v) { return v > 0 ? std::min(v, 1.f) : 0.f; };
+    const Vec3f clamped(unit(rgb.x), unit(rgb.y), unit(rgb.z));
     return defaultRgbToSpectrumTable().lookup(clamped);
 }
 

@@ -21,7 +21,8 @@ namespace pathlab::spectral {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'L', 'R', 'G', 'B', '2', 'S', 'P'};
-constexpr uint64_t kFormatVersion = 1;
+// 2: fits with backtracking (version 1's tables had diverged nodes).
+constexpr uint64_t kFormatVersion = 2;
 
 uint64_t fnv1a(std::string_view bytes) {
     uint64_t h = 0xcbf29ce484222325ULL;
