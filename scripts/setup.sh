@@ -30,6 +30,9 @@ PACKAGES=(
   # Studies across the ranks of a cluster (docs/cluster.md): Open MPI, its
   # headers for pathlab and its mpirun for the tests.
   libopenmpi-dev openmpi-bin
+  # Spectral mode (docs/spectral.md): the CIE 1931 2° colour-matching functions
+  # and the CIE standard illuminants as colord ships them, converted at build time.
+  colord-data
 )
 # npm ships inside some nodejs builds; Debian's own package only where it does not.
 if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
