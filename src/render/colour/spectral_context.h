@@ -14,7 +14,9 @@
 
 #include "core/math.h"
 #include "render/bsdf.h"
+#include "spectral/colour_space.h"
 #include "spectral/film_xyz.h"
+#include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/rgb_spectrum.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/sampled_wavelengths.h"
@@ -31,15 +33,49 @@ spectral::SampledSpectrum spectralBsdfF(const Bsdf& bsdf, Vec3f wo, Vec3f wi,
 spectral::SampledSpectrum spectralSampledF(const Bsdf& bsdf, Vec3f wo, const BsdfSample& s,
                                            const SpectralContext& ctx);
 
+// The last few colours' sigmoid polynomials (rgbToSigmoid), so that a
+// scene's handful of constant colours are looked up in the coefficient table
+// once per batch of a pixel's paths rather than at every vertex. Exact:
+// a hit returns what rgbToSigmoid returned for the same bits.
+class SigmoidCache {
+  public:
+    spectral::SigmoidPolynomial operator()(Vec3f rgb) {
+        for (int i = 0; i < size_; ++i)
+            if (rgb_[i].x == rgb.x && rgb_[i].y == rgb.y && rgb_[i].z == rgb.z) return poly_[i];
+        const spectral::SigmoidPolynomial poly = spectral::rgbToSigmoid(rgb);
+        rgb_[next_] = rgb, poly_[next_] = poly;
+        next_ = (next_ + 1) % kEntries;
+        size_ = std::min(size_ + 1, kEntries);
+        return poly;
+    }
+
+  private:
+    static constexpr int kEntries = 8;
+    Vec3f rgb_[kEntries];
+    spectral::SigmoidPolynomial poly_[kEntries];
+    int size_ = 0, next_ = 0;
+};
+
 class SpectralContext {
   public:
     using Colour = spectral::SampledSpectrum;
     static constexpr bool kSpectral = true;
-    explicit SpectralContext(const spectral::SampledWavelengths& lambda) : lambda_(lambda) {}
+    // `cache` outlives the context; the illuminant is sampled once per path.
+    SpectralContext(const spectral::SampledWavelengths& lambda, SigmoidCache& cache)
+        : lambda_(lambda),
+          illuminant_(spectral::linearSrgb().illuminant->sample(lambda)),
+          cache_(&cache) {}
 
-    Colour reflectance(Vec3f rgb) const { return spectral::albedoSpectrum(rgb, lambda_); }
-    Colour unbounded(Vec3f rgb) const { return spectral::unboundedSpectrum(rgb, lambda_); }
-    Colour emission(Vec3f rgb) const { return spectral::illuminantSpectrum(rgb, lambda_); }
+    // albedoSpectrum, unboundedSpectrum and illuminantSpectrum of
+    // rgb_spectrum.h, the same arithmetic, through the cache.
+    Colour reflectance(Vec3f rgb) const { return sampled((*cache_)(rgb)); }
+    Colour unbounded(Vec3f rgb) const {
+        const float m = std::max(maxComponent(rgb), 0.0f);
+        if (m == 0) return Colour(0.0f);
+        const float scale = 2 * m;
+        return scale * sampled((*cache_)(rgb / scale));
+    }
+    Colour emission(Vec3f rgb) const { return unbounded(rgb) * illuminant_; }
     Colour f(const Bsdf& bsdf, Vec3f wo, Vec3f wi) const {
         return spectralBsdfF(bsdf, wo, wi, *this);
     }
@@ -50,7 +86,14 @@ class SpectralContext {
     const spectral::SampledWavelengths& wavelengths() const { return lambda_; }
 
   private:
+    Colour sampled(const spectral::SigmoidPolynomial& poly) const {
+        Colour out;
+        for (int i = 0; i < spectral::kSpectrumSamples; ++i) out[i] = poly(lambda_.lambda(i));
+        return out;
+    }
     spectral::SampledWavelengths lambda_;
+    Colour illuminant_;  // the colour space's, D65, at lambda_
+    SigmoidCache* cache_;
 };
 
 }  // namespace pathlab

@@ -43,9 +43,10 @@ void estimateSpectralRadiance(const RenderScene& scene, const Vec3f* origins, co
                               S& sampler, Vec2i pixel, int firstIndex,
                               const IntegratorSettings& settings, int wavelengthDimension,
                               PathCounters& counters, Vec3f* L) {
+    SigmoidCache cache;
     for (int k = 0; k < count; ++k) {
         const SpectralContext ctx(
-            sampleWavelengths(sampler, pixel, firstIndex + k, wavelengthDimension));
+            sampleWavelengths(sampler, pixel, firstIndex + k, wavelengthDimension), cache);
         ++counters.dimensions;
         const spectral::SampledSpectrum radiance =
             estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler, pixel,
