@@ -95,6 +95,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--light-sampler", opts->lightSampler,
                     "How a light is chosen for next-event estimation: uniform, power or bvh "
                     "(default: the scene file's, else power)");
+    cmd->add_flag("--spectral", opts->settings.spectral,
+                  "Carry four sampled wavelengths per path instead of RGB (pbrt-v4's spectral "
+                  "rendering; the image is linear sRGB either way)");
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_option("-o,--output", opts->output, "Output image (.exr linear, .png sRGB, .pfm)")

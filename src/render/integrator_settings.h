@@ -24,6 +24,11 @@ struct IntegratorSettings {
     // The first dimension of path vertex 0's block (dims::firstBounce): 2, or
     // 4 when the camera's thin lens draws dimensions 2 and 3.
     int firstBounce = dims::kFirstBounce;
+    // Spectral mode (render/colour/spectral_paths.h): each path carries four
+    // wavelengths drawn from dimension wavelengthDimension, and firstBounce
+    // is the dimension after it.
+    bool spectral = false;
+    int wavelengthDimension = 0;
 };
 
 }  // namespace pathlab

@@ -17,6 +17,7 @@
 #include <limits>
 #include <optional>
 
+#include "render/colour/rgb_context.h"
 #include "render/diffuse_batch.h"
 #include "render/integrator_settings.h"
 #include "render/layered/walk_dimensions.h"
@@ -79,27 +80,33 @@ class VertexDimensions {
 // light sample, weighted against the BSDF's density for the same direction
 // (power heuristic). Nothing when the sample cannot contribute (no shadow
 // ray is traced then); otherwise the shadow ray and what the sample adds if
-// the ray is unblocked.
-struct DirectSample {
+// the ray is unblocked, in the colour the path carries (colour/rgb_context.h).
+template <class Colour>
+struct DirectSampleOf {
     Vec3f origin, toLight;  // the shadow ray o + t·d, 0 < t < tMax
     float tMax;
-    Vec3f contribution;
+    Colour contribution;
 };
+using DirectSample = DirectSampleOf<Vec3f>;
 // A layered BSDF's walks for f and pdf towards the light sample, from the
 // sampler (null: the BSDF's own, seeded by the directions).
 struct LightWalks {
     WalkNumbers* f = nullptr;
     WalkNumbers* pdf = nullptr;
 };
-inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
-                                                const SurfaceInteraction& si, const Frame& frame,
-                                                const Bsdf& bsdf, Vec3f wo, float uChoice,
-                                                Vec2f uLight, LightWalks walks = {}) {
+template <class Ctx = RgbContext>
+std::optional<DirectSampleOf<typename Ctx::Colour>> sampleDirect(
+    const RenderScene& scene, const SurfaceInteraction& si, const Frame& frame, const Bsdf& bsdf,
+    Vec3f wo, float uChoice, Vec2f uLight, LightWalks walks = {}, const Ctx& ctx = {}) {
+    using Colour = typename Ctx::Colour;
     const auto ls = scene.lights().sample(si.p, si.ns, uChoice, uLight);
     if (!ls) return std::nullopt;
     const Vec3f wi = frame.toLocal(ls->wi);
-    const Vec3f f =
-        (walks.f ? bsdf.layered()->f(wo, wi, *walks.f) : bsdf.f(wo, wi)) * absCosTheta(wi);
+    Colour f;
+    if constexpr (Ctx::kSpectral)
+        f = ctx.f(bsdf, wo, wi) * absCosTheta(wi);  // layered BSDFs are RGB only
+    else
+        f = (walks.f ? bsdf.layered()->f(wo, wi, *walks.f) : bsdf.f(wo, wi)) * absCosTheta(wi);
     if (isBlack(f)) return std::nullopt;
     // The shadow ray runs from the nudged origin to the light point itself, as
     // pbrt-v4's SpawnRayTo: with the unnormalised difference as its direction,
@@ -112,21 +119,24 @@ inline std::optional<DirectSample> sampleDirect(const RenderScene& scene,
         ls->delta ? 1.0f
                   : powerHeuristic(ls->pdf, walks.pdf ? bsdf.layered()->pdf(wo, wi, *walks.pdf)
                                                       : bsdf.pdf(wo, wi));
-    const Vec3f contribution = f * ls->radiance * (weight / ls->pdf);
-    if (std::isinf(ls->distance)) return DirectSample{origin, ls->wi, ls->distance, contribution};
-    return DirectSample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
+    const Colour contribution = f * ctx.emission(ls->radiance) * (weight / ls->pdf);
+    using Sample = DirectSampleOf<Colour>;
+    if (std::isinf(ls->distance)) return Sample{origin, ls->wi, ls->distance, contribution};
+    return Sample{origin, si.p + ls->wi * ls->distance - origin, 1 - 1e-4f, contribution};
 }
 
 // A sample's estimate: its contribution unless its shadow ray is blocked.
-inline Vec3f traceShadowRay(const RenderScene& scene, const DirectSample& d,
-                            PathCounters& counters) {
+template <class Colour>
+Colour traceShadowRay(const RenderScene& scene, const DirectSampleOf<Colour>& d,
+                      PathCounters& counters) {
     ++counters.shadowRays;
-    return scene.occluded(d.origin, d.toLight, d.tMax) ? Vec3f(0.0f) : d.contribution;
+    return scene.occluded(d.origin, d.toLight, d.tMax) ? Colour(0.0f) : d.contribution;
 }
 
 // Russian roulette's probability of ending the path after vertex `depth`
 // with throughput beta (pbrt-v4's rule); 0 where roulette does not play.
-inline float terminationProbability(const IntegratorSettings& settings, int depth, Vec3f beta) {
+template <class Colour>
+float terminationProbability(const IntegratorSettings& settings, int depth, const Colour& beta) {
     if (!settings.russianRoulette || depth < settings.rouletteDepth) return 0;
     return std::max(0.0f, 1 - maxComponent(beta));
 }
@@ -134,9 +144,9 @@ inline float terminationProbability(const IntegratorSettings& settings, int dept
 // After a vertex's bounce: Russian roulette, from vertex rouletteDepth on
 // (its number drawn only when it can end the path), then the end of a path
 // whose throughput is zero. False when the path ends.
-template <Sampler S>
+template <Sampler S, class Colour>
 bool pathContinues(const IntegratorSettings& settings, int depth, VertexDimensions<S>& draws,
-                   Vec3f& beta) {
+                   Colour& beta) {
     const float q = terminationProbability(settings, depth, beta);
     if (q > 0) {
         if (draws.get1D(dims::kRoulette) < q) return false;
@@ -147,11 +157,12 @@ bool pathContinues(const IntegratorSettings& settings, int depth, VertexDimensio
 
 // An escaped ray's radiance from the image environment map, weighted
 // against the map's light sample for the same direction.
-inline void addEnvironmentMap(const LightSet& lights, Vec3f dir, Vec3f beta, bool unweighted,
-                              float prevBsdfPdf, Vec3f& L) {
+template <class Ctx = RgbContext, class Colour = typename Ctx::Colour>
+void addEnvironmentMap(const LightSet& lights, Vec3f dir, const Colour& beta, bool unweighted,
+                       float prevBsdfPdf, Colour& L, const Ctx& ctx = {}) {
     const Vec3f Le = lights.environmentMapRadiance(dir);
     if (isBlack(Le)) return;
-    L += beta * Le *
+    L += beta * ctx.emission(Le) *
          (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironmentMap(dir)));
 }
 
@@ -160,22 +171,23 @@ inline void addEnvironmentMap(const LightSet& lights, Vec3f dir, Vec3f beta, boo
 // sample that could have reached the same point (power heuristic) — unweighted
 // for the camera ray and after a specular bounce, which no light sample
 // competes with.
-inline void addEmission(const LightSet& lights, bool found, const SurfaceInteraction& si, Vec3f dir,
-                        Vec3f beta, bool unweighted, float prevBsdfPdf, Vec3f prevPoint,
-                        Vec3f prevNormal, Vec3f& L) {
+template <class Ctx = RgbContext, class Colour = typename Ctx::Colour>
+void addEmission(const LightSet& lights, bool found, const SurfaceInteraction& si, Vec3f dir,
+                 const Colour& beta, bool unweighted, float prevBsdfPdf, Vec3f prevPoint,
+                 Vec3f prevNormal, Colour& L, const Ctx& ctx = {}) {
     if (!found) {
         const Vec3f env = lights.environment();
         if (!isBlack(env))
-            L += beta * env *
+            L += beta * ctx.emission(env) *
                  (unweighted ? 1.0f : powerHeuristic(prevBsdfPdf, lights.pdfEnvironment()));
         if (lights.hasEnvironmentMap())
-            addEnvironmentMap(lights, dir, beta, unweighted, prevBsdfPdf, L);
+            addEnvironmentMap(lights, dir, beta, unweighted, prevBsdfPdf, L, ctx);
         return;
     }
     if (si.light >= 0) {
         const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
         if (!isBlack(Le))
-            L += beta * Le *
+            L += beta * ctx.emission(Le) *
                  (unweighted ? 1.0f
                              : powerHeuristic(prevBsdfPdf, lights.pdfAreaLight(si.light, prevPoint,
                                                                                prevNormal, si.p)));
@@ -186,13 +198,17 @@ inline void addEmission(const LightSet& lights, bool found, const SurfaceInterac
 // dimensions), next-event estimation unless the BSDF is specular, and the
 // BSDF sample with the bounce's world direction and nudged origin. The
 // scalar integrator shades every vertex so, the batched one those that are
-// not Lambertian.
-struct VertexShading {
+// not Lambertian. `weight` is the bounce's throughput factor f·|cosθi|/pdf in
+// the path's colour.
+template <class Colour>
+struct VertexShadingOf {
     bool lightSampled = false;  // next-event estimation ran (non-specular BSDF)
-    std::optional<DirectSample> direct;
+    std::optional<DirectSampleOf<Colour>> direct;
     std::optional<BsdfSample> bounce;
     Vec3f wi, origin;  // where bounce is set
+    Colour weight;     // where bounce is set
 };
+using VertexShading = VertexShadingOf<Vec3f>;
 // The numbers of one layered walk at a vertex: the sampler's, at the walk's
 // dimensions, then PCG32 (walk_numbers.h).
 template <Sampler S>
@@ -236,30 +252,42 @@ VertexShading shadeLayeredVertex(const RenderScene& scene, VertexDimensions<S>& 
         v.bounce->f *= pdf / v.bounce->pdf;
         v.bounce->pdf = pdf;
     }
-    if (v.bounce) v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+    if (v.bounce) {
+        v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+        v.weight = v.bounce->weight();
+    }
     return v;
 }
 
-template <Sampler S>
-VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
-                          const SurfaceInteraction& si, Vec3f dir) {
+// A vertex's shading in the colour of context ctx (colour/rgb_context.h).
+// Layered BSDFs are shaded in RGB only (renderer.cpp rejects them in
+// spectral mode before rendering).
+template <Sampler S, class Ctx = RgbContext>
+VertexShadingOf<typename Ctx::Colour> shadeVertex(const RenderScene& scene,
+                                                  VertexDimensions<S>& draws,
+                                                  const SurfaceInteraction& si, Vec3f dir,
+                                                  const Ctx& ctx = {}) {
     const LightSet& lights = scene.lights();
     const Bsdf bsdf = scene.bsdfAt(si, dir);
     const Frame frame = shadingFrame(bsdf, si.ns);
     const Vec3f wo = frame.toLocal(-dir);
-    if (bsdf.layered()) return shadeLayeredVertex(scene, draws, si, bsdf, frame, wo);
-    VertexShading v;
+    if constexpr (!Ctx::kSpectral)
+        if (bsdf.layered()) return shadeLayeredVertex(scene, draws, si, bsdf, frame, wo);
+    VertexShadingOf<typename Ctx::Colour> v;
     if (!bsdf.isSpecular()) {
         const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
         const Vec2f uLight = draws.get2D(dims::kLightPoint);
         v.lightSampled = true;
-        v.direct = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight);
+        v.direct = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight, {}, ctx);
     }
     const float uLobe = bsdf.usesLobeSample() ? draws.get1D(dims::kBsdfLobe) : 0;
     const Vec2f uDirection =
         bsdf.usesDirectionSample() ? draws.get2D(dims::kBsdfDirection) : Vec2f{};
     v.bounce = bsdf.sample(wo, uLobe, uDirection);
-    if (v.bounce) v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+    if (v.bounce) {
+        v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+        v.weight = ctx.sampledF(bsdf, wo, *v.bounce) * (absCosTheta(v.bounce->wi) / v.bounce->pdf);
+    }
     return v;
 }
 
@@ -268,13 +296,17 @@ VertexShading shadeVertex(const RenderScene& scene, VertexDimensions<S>& draws,
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
 // here one at a time. (`origin` is the camera ray's own: the eye, or its point
 // on the lens or the orthographic screen.) (The renderer traces batches, estimateRadianceBatch;
-// this is the reference it is tested against.)
-template <Sampler S>
-Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
-                       SurfaceInteraction si, S& sampler, Vec2i pixel, int sampleIndex,
-                       const IntegratorSettings& settings, PathCounters& counters) {
+// this is the reference it is tested against, and spectral mode's integrator:
+// ctx chooses the colour the path carries, colour/rgb_context.h.)
+template <Sampler S, class Ctx = RgbContext>
+typename Ctx::Colour estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
+                                      SurfaceInteraction si, S& sampler, Vec2i pixel,
+                                      int sampleIndex, const IntegratorSettings& settings,
+                                      PathCounters& counters, const Ctx& ctx = {}) {
+    using Colour = typename Ctx::Colour;
     const LightSet& lights = scene.lights();
-    Vec3f L(0.0f), beta(1.0f), prevPoint, prevNormal;
+    Colour L(0.0f), beta(1.0f);
+    Vec3f prevPoint, prevNormal;
     bool specularBounce = false;
     float prevBsdfPdf = 0;
     for (int depth = 0;; ++depth) {
@@ -283,16 +315,16 @@ Vec3f estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool f
             found = scene.intersect(origin, dir, &si);
         }
         addEmission(lights, found, si, dir, beta, depth == 0 || specularBounce, prevBsdfPdf,
-                    prevPoint, prevNormal, L);
+                    prevPoint, prevNormal, L, ctx);
         if (!found || depth == settings.maxDepth) break;
 
         VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters,
                                   settings.firstBounce, settings.maxDepth);
-        const VertexShading v = shadeVertex(scene, draws, si, dir);
+        const auto v = shadeVertex(scene, draws, si, dir, ctx);
         if (v.lightSampled)
-            L += beta * (v.direct ? traceShadowRay(scene, *v.direct, counters) : Vec3f(0.0f));
+            L += beta * (v.direct ? traceShadowRay(scene, *v.direct, counters) : Colour(0.0f));
         if (!v.bounce) break;
-        beta *= v.bounce->weight();
+        beta *= v.weight;
         specularBounce = v.bounce->specular;
         prevBsdfPdf = v.bounce->pdf;
         prevPoint = si.p;
@@ -363,7 +395,7 @@ bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampl
     }
     out.bounce[j] = v.bounce.has_value();
     if (!v.bounce) return false;
-    const Vec3f weight = v.bounce->weight();
+    const Vec3f weight = v.weight;
     out.ox[j] = v.origin.x, out.oy[j] = v.origin.y, out.oz[j] = v.origin.z;
     out.wx[j] = v.wi.x, out.wy[j] = v.wi.y, out.wz[j] = v.wi.z;
     out.weightR[j] = weight.x, out.weightG[j] = weight.y, out.weightB[j] = weight.z;

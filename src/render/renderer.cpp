@@ -16,6 +16,7 @@
 #include "core/thread_annotations.h"
 #include "render/camera_model.h"
 #include "render/camera_samples.h"
+#include "render/colour/spectral_paths.h"
 #include "render/film.h"
 #include "render/path_integrator.h"
 #include "render/pixel_filter.h"
@@ -175,7 +176,11 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
         result.counters.rays += uint64_t(count);
         result.counters.dimensions += cameraDimensions * uint64_t(count);
         Vec3f radiance[kBatchSamples];
-        if (integrator.batchPaths)
+        if (integrator.spectral)
+            estimateSpectralRadiance(scene, origins, dirs, found, first, count, sampler, pixel, i0,
+                                     integrator, integrator.wavelengthDimension, result.counters,
+                                     radiance);
+        else if (integrator.batchPaths)
             estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
                                   result.counters, radiance);
         else
@@ -337,7 +342,14 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     const bool weighted = settings.weightedFilm || !frame.filter.constantWeight();
     IntegratorSettings integrator{settings.maxDepth, settings.russianRoulette,
                                   settings.rouletteDepth, settings.batchPaths};
-    integrator.firstBounce = dims::firstBounce(frame.camera.hasLens());
+    const bool lens = frame.camera.hasLens();
+    integrator.firstBounce = dims::firstBounce(lens);
+    if (settings.spectral) {
+        checkSpectralSupport(desc);
+        integrator.spectral = true;
+        integrator.wavelengthDimension = dims::wavelength(lens);
+        integrator.firstBounce = dims::spectralFirstBounce(lens);
+    }
 
     const PixelBounds& b = frame.bounds;
     std::vector<Tile> tiles;

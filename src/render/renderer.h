@@ -38,7 +38,10 @@ struct RenderSettings {
     bool russianRoulette = true;
     int rouletteDepth = kDefaultRouletteDepth;  // bounces before roulette may end a path
     bool batchPaths = true;                     // IntegratorSettings::batchPaths
-    int threads = 0;                            // 0: all cores
+    // Carry four sampled wavelengths per path instead of RGB
+    // (render/colour/spectral_paths.h); the image is linear sRGB either way.
+    bool spectral = false;
+    int threads = 0;  // 0: all cores
     bool progress = false;
     // Also keep the image after each of these sample counts (ascending, each
     // below samplesPerPixel). Only for progressive samplers (SamplerInfo), for

@@ -127,6 +127,7 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     h.integer(spec.reference.seed);
     // Only when set, so that the keys of studies without it stay as they were.
     if (!spec.lightSampler.empty()) h.text("light_sampler " + spec.lightSampler);
+    if (spec.spectral) h.text("spectral");
     return h.hex();
 }
 
@@ -186,6 +187,7 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
                                  {"max_depth", spec.maxDepth},
                                  {"russian_roulette", spec.russianRoulette},
                                  {"roulette_depth", spec.rouletteDepth},
+                                 {"spectral", spec.spectral},
                                  {"spp", spec.reference.spp},
                                  {"sampler", spec.reference.sampler},
                                  {"seed", spec.reference.seed},
@@ -207,6 +209,7 @@ RenderSettings studyRenderSettings(const StudySpec& spec, int threads) {
     s.maxDepth = spec.maxDepth;
     s.russianRoulette = spec.russianRoulette;
     s.rouletteDepth = spec.rouletteDepth;
+    s.spectral = spec.spectral;
     s.threads = threads;
     return s;
 }

@@ -163,6 +163,7 @@ void recordStudy(const StudySpec& spec, const std::vector<SceneJob>& jobs, Resul
         {"max_depth", std::to_string(spec.maxDepth)},
         {"russian_roulette", spec.russianRoulette ? "true" : "false"},
         {"roulette_depth", std::to_string(spec.rouletteDepth)},
+        {"spectral", spec.spectral ? "true" : "false"},
         {"reference_spp", std::to_string(spec.reference.spp)},
         {"reference_sampler", spec.reference.sampler},
         {"reference_seed", std::to_string(spec.reference.seed)},

@@ -282,7 +282,7 @@ std::vector<ExternalSpec> SpecReader::externals(const toml::node& n,
 StudySpec readSpec(const toml::table& t, const SpecReader& in) {
     in.onlyKeys(t, "",
                 {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
-                 "russian_roulette", "roulette_depth", "light_sampler", "metrics",
+                 "russian_roulette", "roulette_depth", "light_sampler", "spectral", "metrics",
                  "time_budget_seconds", "reference", "external", "difficulty"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
@@ -308,6 +308,7 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
                     std::string("must be one of ") + lightSelectionNames() + ", got '" +
                         s.lightSampler + "'");
     }
+    if (const toml::node* v = t.get("spectral")) s.spectral = in.boolean(*v, "spectral");
     if (const toml::node* v = t.get("metrics"))
         s.metrics = in.names(*v, "metrics", knownStudyMetrics(), "metric");
     if (const toml::node* v = t.get("time_budget_seconds"))
@@ -396,6 +397,7 @@ std::string studySpecToToml(const StudySpec& s) {
         << "russian_roulette = " << (s.russianRoulette ? "true" : "false") << "\n"
         << "roulette_depth = " << s.rouletteDepth << "\n";
     if (!s.lightSampler.empty()) out << "light_sampler = " << quoted(s.lightSampler) << "\n";
+    if (s.spectral) out << "spectral = true\n";
     out << "metrics = " << tomlArray(s.metrics, str) << "\n";
     if (s.timeBudgetSeconds)
         out << "time_budget_seconds = " << nlohmann::json(*s.timeBudgetSeconds).dump() << "\n";
@@ -437,6 +439,7 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.russianRoulette != b.russianRoulette) return "russian_roulette";
     if (a.rouletteDepth != b.rouletteDepth) return "roulette_depth";
     if (a.lightSampler != b.lightSampler) return "light_sampler";
+    if (a.spectral != b.spectral) return "spectral";
     if (a.metrics != b.metrics) return "metrics";
     if (a.timeBudgetSeconds != b.timeBudgetSeconds) return "time_budget_seconds";
     if (a.reference.spp != b.reference.spp) return "reference.spp";

@@ -64,6 +64,9 @@ struct StudySpec {
     // the reference's included: uniform, power or bvh; "" = each scene's own
     // (power unless its file says otherwise).
     std::string lightSampler;
+    // Every render of the study, the reference's included, in spectral mode
+    // (RenderSettings::spectral).
+    bool spectral = false;
     ReferenceSpec reference;
     std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
     std::optional<double> timeBudgetSeconds;
