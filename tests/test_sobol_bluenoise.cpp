@@ -60,12 +60,12 @@ TEST(SobolBlueNoise, PairIsScrambledSobolAndANestedBijection) {
     // block to 2^16 distinct 16-bit strata of x (and of y); and two values
     // with the same top j bits keep equal top j bits after the scramble
     // (Owen's nested property: a bit's flip depends only on bits above it).
-    const SobolBlueNoiseKey key{0x9e3779b9u, 0x85ebca6bu, 0xc2b2ae35u};
-    // By definition: Sobol' dimensions 0 and 1 of the ranked index, each
-    // Owen-scrambled with its seed.
+    const SobolBlueNoiseKey key{0x9e3779b9u, 0x85ebca6bu, 0xc2b2ae35u, 0x5du};
+    // By definition: Sobol' dimensions 0 and 1 of the ranked index (the
+    // nested scramble, then the offset), each Owen-scrambled with its seed.
     for (uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 65535u, 0x12345678u, 0xffffffffu}) {
         const uint64_t xy = sobolBlueNoisePair(key, i);
-        const uint32_t ranked = owenScramble(i, key.rank);
+        const uint32_t ranked = owenScramble(i, key.rank) ^ key.offset;
         EXPECT_EQ(uint32_t(xy), owenScramble(sobolBits(sobolMatrices(), ranked, 0), key.scrambleX));
         EXPECT_EQ(uint32_t(xy >> 32),
                   owenScramble(sobolBits(sobolMatrices(), ranked, 1), key.scrambleY));
@@ -92,12 +92,62 @@ TEST(SobolBlueNoise, OptimiserPermutesThePoolDeterministically) {
     const std::vector<SobolBlueNoiseKey> pool = sobolBlueNoiseKeyPool(s);
     EXPECT_NE(a.key, pool);  // it moved keys
     std::multiset<std::tuple<uint32_t, uint32_t, uint32_t>> fromPool, fromTile;
+    std::set<uint32_t> offsets;
     for (const auto& k : pool) fromPool.insert({k.rank, k.scrambleX, k.scrambleY});
-    for (const auto& k : a.key) fromTile.insert({k.rank, k.scrambleX, k.scrambleY});
+    for (const auto& k : a.key) {
+        fromTile.insert({k.rank, k.scrambleX, k.scrambleY});
+        EXPECT_LT(k.offset, 1u << s.levels);  // ranking bits below the top level only
+        offsets.insert(k.offset);
+    }
     EXPECT_EQ(fromPool, fromTile);
+    EXPECT_GT(offsets.size(), size_t(1) << (s.levels - 1));  // it ranked
     SobolBlueNoiseOptimizer other = s;
     other.seed += 1;
     EXPECT_NE(optimizeSobolBlueNoiseKeys(other).key, a.key);
+}
+
+// Low-frequency power (rings 1..size/8, white = 1) of a tile's error image
+// at `spp`, straight from its keys, for `f` seen through a digital shift.
+template <class F>
+double tileLowFrequencyPower(const SobolBlueNoiseKeys& tile, int spp, uint64_t shift, F f) {
+    std::vector<double> image(tile.key.size());
+    for (size_t p = 0; p < image.size(); ++p) {
+        double sum = 0;
+        for (int i = 0; i < spp; ++i) {
+            const uint64_t xy = sobolBlueNoisePair(tile.key[p], uint32_t(i)) ^ shift;
+            sum += f(Vec2f{fixedPointToFloat(uint32_t(xy)), fixedPointToFloat(uint32_t(xy >> 32))});
+        }
+        image[p] = sum / spp;
+    }
+    const std::vector<double> power = radialPowerSpectrum(image, tile.size, tile.size);
+    double low = 0;
+    for (int r = 1; r <= tile.size / 8; ++r) low += power[size_t(r)];
+    return low / (tile.size / 8);
+}
+
+double disk(Vec2f p) {
+    return (p.x - 0.45) * (p.x - 0.45) + (p.y - 0.55) * (p.y - 0.55) < 0.1 ? 1.0 : 0.0;
+}
+
+TEST(SobolBlueNoise, RankingMakesEveryPrefixBlue) {
+    // The ranking bits are what make the 2^j-sample prefixes (j below the
+    // top level) blue: the same tile with its offsets cleared keeps the
+    // arrangement of the full sets but takes arbitrary halves of them.
+    SobolBlueNoiseOptimizer s = smallSettings();
+    s.size = 32;
+    const SobolBlueNoiseKeys ranked = optimizeSobolBlueNoiseKeys(s);
+    SobolBlueNoiseKeys unranked = ranked;
+    for (SobolBlueNoiseKey& k : unranked.key) k.offset = 0;
+    for (int j = 0; j < s.levels; ++j) {
+        double blue = 0, plain = 0;
+        for (uint64_t shift : {0ull, 0x243f6a8885a308d3ull, 0x13198a2e03707344ull}) {
+            blue += tileLowFrequencyPower(ranked, 1 << j, shift, disk);
+            plain += tileLowFrequencyPower(unranked, 1 << j, shift, disk);
+        }
+        std::printf("%d spp: low-frequency power %.3f ranked, %.3f unranked\n", 1 << j, blue / 3,
+                    plain / 3);
+        EXPECT_LT(blue, 0.7 * plain) << (1 << j) << " spp";
+    }
 }
 
 TEST(SobolBlueNoise, CacheIsWrittenOnceReadAndRepaired) {
@@ -205,9 +255,6 @@ double lowFrequencyPower(const std::string& sampler, int spp, int d, uint64_t se
 
 TEST(SobolBlueNoise, ErrorIsBlueNoiseAtOneAndFourSpp) {
     // Integrands the optimiser never saw: a disk and a smooth Gaussian.
-    const auto disk = [](Vec2f p) {
-        return (p.x - 0.45) * (p.x - 0.45) + (p.y - 0.55) * (p.y - 0.55) < 0.1 ? 1.0 : 0.0;
-    };
     for (int spp : {1, 4})
         for (int d : {0, 3}) {
             double blue = 0, owen = 0;
