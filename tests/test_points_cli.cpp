@@ -42,9 +42,10 @@ TEST(SamplersCli, ListsEverySamplerWithDimensionsAndRandomization) {
     std::string line, names;
     std::getline(lines, line);  // header
     while (std::getline(lines, line)) names += line.substr(0, line.find(' ')) + " ";
-    EXPECT_EQ(names,
-              "standard halton halton-rd halton-owen blue-noise independent stratified sobol "
-              "sobol-xor sobol-global-owen sobol-owen zsobol sobol-bluenoise pmj02 ");
+    EXPECT_EQ(
+        names,
+        "standard halton halton-rd halton-owen blue-noise independent stratified sobol "
+        "sobol-xor sobol-global-owen sobol-owen zsobol sobol-bluenoise pmj02 cascaded-sobol ");
     EXPECT_NE(r.out.find("\nsobol             3667        no"), std::string::npos) << r.out;
 }
 

@@ -52,12 +52,12 @@ TEST(SamplerQuality, LowDiscrepancySamplersBeatIndependentAtN256) {
         mean[name] = sum / kSeeds;
         std::printf("  %-12s %.5f\n", name.c_str(), mean[name]);
     }
-    for (const char* name :
-         {"halton", "halton-rd", "halton-owen", "stratified", "sobol", "sobol-xor",
-          "sobol-global-owen", "sobol-owen", "zsobol", "sobol-bluenoise", "pmj02"})
+    for (const char* name : {"halton", "halton-rd", "halton-owen", "stratified", "sobol",
+                             "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol",
+                             "sobol-bluenoise", "pmj02", "cascaded-sobol"})
         EXPECT_LT(mean[name], mean["independent"]) << name;
     // The (0,2) samplers are far better than random: at least 5x.
-    for (const char* name : {"sobol-owen", "zsobol", "sobol-bluenoise", "pmj02"})
+    for (const char* name : {"sobol-owen", "zsobol", "sobol-bluenoise", "pmj02", "cascaded-sobol"})
         EXPECT_LT(5 * mean[name], mean["independent"]) << name;
 }
 

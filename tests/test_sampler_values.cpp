@@ -23,11 +23,11 @@ double referenceRadicalInverse(uint64_t a, int base) {
     return value;
 }
 
-TEST(SamplerValues, ListsTheFourteenSamplersInOrder) {
+TEST(SamplerValues, ListsTheFifteenSamplersInOrder) {
     const std::vector<std::string> expected = {
         "standard",    "halton",     "halton-rd",       "halton-owen", "blue-noise",
         "independent", "stratified", "sobol",           "sobol-xor",   "sobol-global-owen",
-        "sobol-owen",  "zsobol",     "sobol-bluenoise", "pmj02"};
+        "sobol-owen",  "zsobol",     "sobol-bluenoise", "pmj02",       "cascaded-sobol"};
     EXPECT_EQ(allSamplerNames(), expected);
     EXPECT_THROW(makeSampler("no-such-sampler", SamplerConfig{}), InputError);
 }

@@ -17,7 +17,7 @@ from matplotlib.patches import Rectangle  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 # Colour-blind-aware and distinct; the presentation's five are drawn solid,
-# the pbrt-v4 family dashed, so fourteen lines stay tellable apart.
+# the pbrt-v4 family dashed, so fifteen lines stay tellable apart.
 PALETTE = {
     "standard": "#4d4d4d",
     "halton": "#1f77b4",
@@ -33,6 +33,7 @@ PALETTE = {
     "zsobol": "#e377c2",
     "sobol-bluenoise": "#00a087",
     "pmj02": "#7f7f00",
+    "cascaded-sobol": "#5254a3",
 }
 MARKERS = "os^Dv<>pPhX*d"
 PRESENTATION = {"standard", "halton", "halton-rd", "halton-owen", "blue-noise"}

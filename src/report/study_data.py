@@ -16,7 +16,7 @@ from collections import defaultdict
 SAMPLER_ORDER = [
     "standard", "halton", "halton-rd", "halton-owen", "blue-noise", "independent",
     "stratified", "sobol", "sobol-xor", "sobol-global-owen", "sobol-owen", "zsobol",
-    "sobol-bluenoise", "pmj02",
+    "sobol-bluenoise", "pmj02", "cascaded-sobol",
 ]
 
 

@@ -63,6 +63,11 @@ const std::vector<Entry>& entries() {
         {{"pmj02", "progressive multi-jittered (0,2) sequences, padded per dimension pair", 2, true,
           false},
          maker<Pmj02Sampler>()},
+        {{"cascaded-sobol",
+          "Owen-scrambled Sobol' cascaded so every consecutive dimension pair is a (0,2)-net "
+          "(Paulin et al. 2021)",
+          0, true, false},
+         maker<CascadedSobolSampler>()},
     };
     return list;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sampling/blue_noise.h"
+#include "sampling/cascaded_sobol.h"
 #include "sampling/halton.h"
 #include "sampling/independent.h"
 #include "sampling/pmj02.h"
@@ -25,7 +26,7 @@ using AnySampler =
     std::variant<StandardSampler, HaltonSampler, RandomDigitHaltonSampler, OwenHaltonSampler,
                  BlueNoiseSampler, IndependentSampler, StratifiedSampler, SobolSampler,
                  XorSobolSampler, GlobalOwenSobolSampler, OwenSobolSampler, ZSobolSampler,
-                 SobolBlueNoiseSampler, Pmj02Sampler>;
+                 SobolBlueNoiseSampler, Pmj02Sampler, CascadedSobolSampler>;
 
 struct SamplerInfo {
     std::string name;

@@ -54,7 +54,7 @@ StudySpec fullPreset() {
     s.samplers = {
         "standard",    "halton",     "halton-rd",       "halton-owen", "blue-noise",
         "independent", "stratified", "sobol",           "sobol-xor",   "sobol-global-owen",
-        "sobol-owen",  "zsobol",     "sobol-bluenoise", "pmj02"};
+        "sobol-owen",  "zsobol",     "sobol-bluenoise", "pmj02",       "cascaded-sobol"};
     s.spp = powersOfTwo(4096);
     s.seeds = 8;
     s.resolution = {512, 512};
