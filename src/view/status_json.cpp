@@ -10,6 +10,8 @@ nlohmann::json statusJson(const SessionStatus& status) {
         {"compare", s.compare.empty() ? nlohmann::json() : nlohmann::json(s.compare)},
         {"seed", s.seed},
         {"spp", status.spp},
+        {"spp_b", s.compare.empty() ? nlohmann::json() : nlohmann::json(status.sppB)},
+        {"equal", equalByName(s.equal)},
         {"width", status.width},
         {"height", status.height},
         {"paths_per_second", status.pathsPerSecond},

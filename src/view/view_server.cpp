@@ -183,7 +183,7 @@ void ViewServer::addImageRoutes() {
             return sendError(res, 404,
                              which == "b" && frame.a ? "no compare sampler" : "no image yet");
         res.set_header("Cache-Control", "no-store");
-        res.set_header("X-Pathlab-Spp", std::to_string(frame.spp));
+        res.set_header("X-Pathlab-Spp", std::to_string(which == "a" ? frame.spp : frame.sppB));
         res.set_header("X-Pathlab-Generation", std::to_string(frame.generation));
         if (format == "png") {
             const std::shared_ptr<const std::string> png =
@@ -206,6 +206,7 @@ void ViewServer::addImageRoutes() {
         sendJson(res, json{{"x", *x},
                            {"y", *y},
                            {"spp", frame.spp},
+                           {"spp_b", frame.b ? json(frame.sppB) : json()},
                            {"a", pixelJson(frame.a, *x, *y)},
                            {"b", pixelJson(frame.b, *x, *y)}});
     });
@@ -214,9 +215,9 @@ void ViewServer::addImageRoutes() {
 std::shared_ptr<const std::string> ViewServer::displayPng(const Frame& frame, int which,
                                                           const std::string& map) {
     const ViewSettings s = session_.status().settings;
-    const std::string key = std::to_string(frame.generation) + "/" + std::to_string(frame.spp) +
-                            "/" + std::to_string(s.exposure) + "/" + toneMapName(s.toneMap) + "/" +
-                            map;
+    const int spp = which == 0 ? frame.spp : frame.sppB;
+    const std::string key = std::to_string(frame.generation) + "/" + std::to_string(spp) + "/" +
+                            std::to_string(s.exposure) + "/" + toneMapName(s.toneMap) + "/" + map;
     {
         std::lock_guard<std::mutex> lock(pngMutex_);
         if (pngKey_[which] == key) return png_[which];

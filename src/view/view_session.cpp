@@ -25,24 +25,6 @@ RenderSettings renderSettingsFor(const ViewSettings& v, const std::string& sampl
     return s;
 }
 
-// The sample count of the next pass. The first pass is 1 spp, so a restart
-// shows an image at once. Progressive samplers then add a batch that doubles
-// up to kPacketWidth samples, and beyond while passes take under 0.25 s, and
-// halves when one takes over 1 s, but never below kPacketWidth: a pixel's samples are
-// traced as packets of eight and their paths in batches
-// (render/path_integrator.h), and passes of one sample would leave the
-// packets nearly empty — at 512² sixteen 1-spp passes took 1.9 times as long
-// as one 16-spp render (bench/view_interactivity.py). Other samplers render
-// each pass afresh: doubling the count keeps the total within twice the last
-// pass.
-int nextSampleCount(int spp, bool progressive, double lastPassSeconds, int& batch, int maxSpp) {
-    if (spp == 0) return 1;
-    if (!progressive) return std::min(maxSpp, spp * 2);
-    if ((batch < kPacketWidth || lastPassSeconds < 0.25) && batch < (1 << 20)) batch *= 2;
-    if (lastPassSeconds > 1.0 && batch > kPacketWidth) batch /= 2;
-    return int(std::min<int64_t>(maxSpp, int64_t(spp) + batch));
-}
-
 }  // namespace
 
 std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene) {
@@ -72,18 +54,17 @@ ViewSession::~ViewSession() {
 }
 
 void ViewSession::work() {
-    std::unique_ptr<Accumulation> a, b;
+    std::unique_ptr<Accumulation> acc[2];  // A, B (null without a compare sampler)
+    std::unique_ptr<PassScheduler> plan;
     std::shared_ptr<const RenderScene> scene;
     uint64_t generation = 0;
-    int batch = 1;
-    double lastPass = 0;
     for (;;) {
-        int target = 0;
+        Pass pass;
         {
             std::unique_lock<std::mutex> lock(mutex_);
             const auto hasWork = [&] {
                 return stopping_ || restart_ ||
-                       (!settings_.paused && error_.empty() && frame_.spp < settings_.maxSpp);
+                       (!settings_.paused && error_.empty() && !plan->done());
             };
             if (!hasWork()) {
                 idle_ = true;
@@ -97,24 +78,20 @@ void ViewSession::work() {
                 control_.cancel = false;
                 error_.clear();
                 scene = scene_;
-                a = std::make_unique<Accumulation>(
-                    renderSettingsFor(settings_, settings_.sampler, threads_, &control_));
-                b = settings_.compare.empty()
-                        ? nullptr
-                        : std::make_unique<Accumulation>(
-                              renderSettingsFor(settings_, settings_.compare, threads_, &control_));
+                startLocked(acc, plan);
                 generation = frame_.generation;
-                batch = 1, lastPass = 0;
-                if (errors_) errors_->clear();
                 changed_.notify_all();
             }
-            const bool progressive = a->progressive() && (!b || b->progressive());
-            target = nextSampleCount(frame_.spp, progressive, lastPass, batch, settings_.maxSpp);
+            pass = plan->next();
         }
-        const Clock::time_point start = Clock::now();
+        double seconds[2] = {0, 0};
         try {
-            a->advance(*scene, target);
-            if (b) b->advance(*scene, target);
+            for (int i : {0, 1}) {
+                if (pass.target[i] == 0) continue;
+                const double before = acc[i]->seconds();
+                acc[i]->advance(*scene, pass.target[i]);
+                seconds[i] = acc[i]->seconds() - before;
+            }
         } catch (const RenderCancelled&) {
             continue;  // whoever cancelled asked for a restart or a stop
         } catch (const std::exception& e) {
@@ -123,25 +100,49 @@ void ViewSession::work() {
             changed_.notify_all();
             continue;
         }
-        lastPass = std::chrono::duration<double>(Clock::now() - start).count();
-        bool measure = false;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (generation != frame_.generation || restart_) continue;
-            frame_.a = std::make_shared<const Image>(a->image());
-            frame_.b = b ? std::make_shared<const Image>(b->image()) : nullptr;
-            frame_.spp = target;
-            renderSeconds_ = a->seconds() + (b ? b->seconds() : 0);
-            paths_ = a->paths() + (b ? b->paths() : 0);
-            measure = errors_ && errors_->due(target) && referenceFits(a->image());
-            changed_.notify_all();
-        }
-        if (!measure) continue;
-        // Outside the lock: ꟻLIP takes a while, and only this thread uses errors_.
-        errors_->measure(target, a->image(), b ? &b->image() : nullptr);
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (generation == frame_.generation) errorPoints_ = errors_->points();
+        plan->finished(pass, seconds[0], seconds[1]);
+        if (publish(generation, pass, acc)) measureError(generation, acc);
     }
+}
+
+// A new generation: fresh accumulations and pass schedule for the settings.
+void ViewSession::startLocked(std::unique_ptr<Accumulation> (&acc)[2],
+                              std::unique_ptr<PassScheduler>& plan) {
+    const ViewSettings& s = settings_;
+    acc[0] = std::make_unique<Accumulation>(renderSettingsFor(s, s.sampler, threads_, &control_));
+    acc[1] =
+        s.compare.empty()
+            ? nullptr
+            : std::make_unique<Accumulation>(renderSettingsFor(s, s.compare, threads_, &control_));
+    plan = std::make_unique<PassScheduler>(s.equal, acc[1] != nullptr, acc[0]->progressive(),
+                                           acc[1] && acc[1]->progressive(), s.maxSpp);
+    if (errors_) errors_->clear();
+}
+
+// Publishes the images a pass changed; returns whether the error is due for
+// measuring (then both images exist and fit the reference).
+bool ViewSession::publish(uint64_t generation, const Pass& pass,
+                          const std::unique_ptr<Accumulation> (&acc)[2]) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (generation != frame_.generation || restart_) return false;
+    if (pass.target[0]) frame_.a = std::make_shared<const Image>(acc[0]->image());
+    if (pass.target[1]) frame_.b = std::make_shared<const Image>(acc[1]->image());
+    frame_.spp = acc[0]->spp();
+    frame_.sppB = acc[1] ? acc[1]->spp() : 0;
+    renderSeconds_ = acc[0]->seconds() + (acc[1] ? acc[1]->seconds() : 0);
+    paths_ = acc[0]->paths() + (acc[1] ? acc[1]->paths() : 0);
+    changed_.notify_all();
+    const bool complete = frame_.a && (!acc[1] || frame_.b);
+    return complete && errors_ && errors_->due(std::max(frame_.spp, frame_.sppB)) &&
+           referenceFits(acc[0]->image());
+}
+
+// Outside the lock: ꟻLIP takes a while, and only the worker uses errors_.
+void ViewSession::measureError(uint64_t generation, const std::unique_ptr<Accumulation> (&acc)[2]) {
+    errors_->measure(acc[0]->spp(), acc[0]->image(), acc[1] ? acc[1]->spp() : 0,
+                     acc[1] ? &acc[1]->image() : nullptr);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (generation == frame_.generation) errorPoints_ = errors_->points();
 }
 
 // Called with the lock held.
@@ -197,7 +198,7 @@ void ViewSession::reset() {
 void ViewSession::requestRestartLocked() {
     restart_ = true;
     control_.cancel = true;
-    frame_ = Frame{nullptr, nullptr, 0, frame_.generation + 1};
+    frame_ = Frame{nullptr, nullptr, 0, 0, frame_.generation + 1};
     errorPoints_.clear();
     renderSeconds_ = 0, paths_ = 0, started_ = Clock::now();
 }
@@ -212,10 +213,13 @@ SessionStatus ViewSession::status() const {
     SessionStatus s;
     s.settings = settings_;
     s.spp = frame_.spp;
+    s.sppB = frame_.sppB;
     if (frame_.a) s.width = frame_.a->width, s.height = frame_.a->height;
     s.pathsPerSecond = renderSeconds_ > 0 ? double(paths_) / renderSeconds_ : 0;
     s.elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
-    s.running = !settings_.paused && error_.empty() && frame_.spp < settings_.maxSpp;
+    const bool complete = frame_.spp >= settings_.maxSpp &&
+                          (settings_.compare.empty() || frame_.sppB >= settings_.maxSpp);
+    s.running = !settings_.paused && error_.empty() && !complete;
     s.generation = frame_.generation;
     s.error = error_;
     s.reference = frame_.a && referenceFits(*frame_.a);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "render/accumulation.h"
 #include "render/renderer.h"
 #include "view/error_history.h"
 #include "view/view_settings.h"
@@ -21,14 +22,15 @@ namespace pathlab::view {
 
 // The images after a finished pass; shared, never changed once published.
 struct Frame {
-    std::shared_ptr<const Image> a, b;  // b: null without a compare sampler
-    int spp = 0;
-    uint64_t generation = 0;  // increments on every restart
+    std::shared_ptr<const Image> a, b;  // b: null without a compare sampler (or before its pass)
+    int spp = 0;                        // A's
+    int sppB = 0;                       // B's: spp at equal spp, its own count at equal time
+    uint64_t generation = 0;            // increments on every restart
 };
 
 struct SessionStatus {
     ViewSettings settings;
-    int spp = 0, width = 0, height = 0;
+    int spp = 0, sppB = 0, width = 0, height = 0;  // sppB: Frame's
     double pathsPerSecond = 0;  // both samplers' paths over render time since the restart
     double elapsed = 0;         // wall seconds since the restart
     bool reference = false;     // is the error against a reference measured?
@@ -72,6 +74,10 @@ class ViewSession {
 
   private:
     void work();
+    void startLocked(std::unique_ptr<Accumulation> (&acc)[2], std::unique_ptr<PassScheduler>& plan);
+    bool publish(uint64_t generation, const Pass& pass,
+                 const std::unique_ptr<Accumulation> (&acc)[2]);
+    void measureError(uint64_t generation, const std::unique_ptr<Accumulation> (&acc)[2]);
     bool referenceFits(const Image& image) const;
     void requestRestartLocked();
 
