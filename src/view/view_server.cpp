@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <charconv>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -132,6 +133,19 @@ void ViewServer::addApiRoutes() {
         } catch (const InputError& e) {
             sendError(res, 400, e.what());
         }
+    });
+    http_->Post("/api/reference", [this](const httplib::Request& req, httplib::Response& res) {
+        const json body = json::parse(req.body, nullptr, false);
+        if (body.is_discarded()) return sendError(res, 400, "the request body is not JSON");
+        if (!body.is_object() || !body.contains("spp") || !body["spp"].is_number_integer())
+            return sendError(res, 400, "reference spp must be an integer: {\"spp\": N}");
+        const int64_t spp = body["spp"].get<int64_t>();
+        try {
+            session_.buildReference(int(std::clamp<int64_t>(spp, 0, INT32_MAX)));
+        } catch (const InputError& e) {
+            return sendError(res, 400, e.what());
+        }
+        sendJson(res, statusJson(session_.status()));
     });
     http_->Post("/api/reset", [this](const httplib::Request&, httplib::Response& res) {
         session_.reset();

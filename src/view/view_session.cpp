@@ -6,6 +6,7 @@
 #include "render/accumulation.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
+#include "study/reference_cache.h"
 
 namespace pathlab::view {
 namespace {
@@ -36,14 +37,22 @@ ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScen
     : settings_(std::move(settings)), scene_(std::move(scene)), threads_(threads) {
     validateViewSettings(settings_);
     if (reference) {
-        errors_ = std::make_unique<ErrorHistory>(std::move(reference));
-        referenceScene_ = settings_.scene;
+        // A file given by the user: known to show the scene at its size only.
+        errors_ = std::make_shared<ErrorHistory>(std::move(reference));
+        referenceTarget_ = {settings_.scene,
+                            {errors_->reference().width, errors_->reference().height}};
+        referenceSource_ = "file";
     }
     requestRestartLocked();  // generation 1; no other thread yet
     worker_ = std::thread([this] { work(); });
+    if (!errors_) lookUpReference();
 }
 
 ViewSession::~ViewSession() {
+    {
+        std::lock_guard<std::mutex> lock(builderMutex_);
+        builder_.reset();  // its callback takes mutex_: not held here
+    }
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
@@ -101,7 +110,8 @@ void ViewSession::work() {
             continue;
         }
         plan->finished(pass, seconds[0], seconds[1]);
-        if (publish(generation, pass, acc)) measureError(generation, acc);
+        if (const auto errors = publish(generation, pass, acc))
+            measureError(generation, *errors, acc);
     }
 }
 
@@ -119,12 +129,12 @@ void ViewSession::startLocked(std::unique_ptr<Accumulation> (&acc)[2],
     if (errors_) errors_->clear();
 }
 
-// Publishes the images a pass changed; returns whether the error is due for
-// measuring (then both images exist and fit the reference).
-bool ViewSession::publish(uint64_t generation, const Pass& pass,
-                          const std::unique_ptr<Accumulation> (&acc)[2]) {
+// Publishes the images a pass changed; returns the error history when it is
+// due for measuring (then both images exist and fit the reference).
+std::shared_ptr<ErrorHistory> ViewSession::publish(uint64_t generation, const Pass& pass,
+                                                   const std::unique_ptr<Accumulation> (&acc)[2]) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (generation != frame_.generation || restart_) return false;
+    if (generation != frame_.generation || restart_) return nullptr;
     if (pass.target[0]) frame_.a = std::make_shared<const Image>(acc[0]->image());
     if (pass.target[1]) frame_.b = std::make_shared<const Image>(acc[1]->image());
     frame_.spp = acc[0]->spp();
@@ -133,30 +143,105 @@ bool ViewSession::publish(uint64_t generation, const Pass& pass,
     paths_ = acc[0]->paths() + (acc[1] ? acc[1]->paths() : 0);
     changed_.notify_all();
     const bool complete = frame_.a && (!acc[1] || frame_.b);
-    return complete && errors_ && errors_->due(std::max(frame_.spp, frame_.sppB)) &&
-           referenceFits(acc[0]->image());
+    if (complete && errors_ && errors_->due(std::max(frame_.spp, frame_.sppB)) &&
+        referenceFits(acc[0]->image()))
+        return errors_;
+    return nullptr;
 }
 
 // Outside the lock: ꟻLIP takes a while, and only the worker uses errors_.
-void ViewSession::measureError(uint64_t generation, const std::unique_ptr<Accumulation> (&acc)[2]) {
-    errors_->measure(acc[0]->spp(), acc[0]->image(), acc[1] ? acc[1]->spp() : 0,
-                     acc[1] ? &acc[1]->image() : nullptr);
+void ViewSession::measureError(uint64_t generation, ErrorHistory& errors,
+                               const std::unique_ptr<Accumulation> (&acc)[2]) {
+    errors.measure(acc[0]->spp(), acc[0]->image(), acc[1] ? acc[1]->spp() : 0,
+                   acc[1] ? &acc[1]->image() : nullptr);
     std::lock_guard<std::mutex> lock(mutex_);
-    if (generation == frame_.generation) errorPoints_ = errors_->points();
+    if (generation == frame_.generation && &errors == errors_.get()) errorPoints_ = errors.points();
 }
 
-// Called with the lock held.
+// Called with the lock held. A file given by the user fits its scene at its
+// size; a cached or built one also needs the depth and roulette it was
+// rendered with.
 bool ViewSession::referenceFits(const Image& image) const {
-    return errors_ && settings_.scene == referenceScene_ &&
-           errors_->reference().width == image.width && errors_->reference().height == image.height;
+    if (!errors_ || errors_->reference().width != image.width ||
+        errors_->reference().height != image.height)
+        return false;
+    if (referenceSource_ == "file") return settings_.scene == referenceTarget_.scene;
+    return targetLocked() == referenceTarget_;
+}
+
+// Called with the lock held: what a reference for the current settings shows.
+ReferenceTarget ViewSession::targetLocked() const {
+    const Vec2i size = settings_.size.x > 0 ? settings_.size : scene_->description().resolution;
+    return {settings_.scene, size, settings_.maxDepth, settings_.russianRoulette};
 }
 
 std::vector<float> ViewSession::errorMap(const Image& image, ErrorMapKind kind) const {
+    std::shared_ptr<const ErrorHistory> errors;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         if (!referenceFits(image)) return {};
+        errors = errors_;
     }
-    return errors_->errorMap(image, kind);  // errors_ never changes after construction
+    return errors->errorMap(image, kind);  // reads only the reference
+}
+
+// The study's cache, searched when the current reference does not fit the
+// settings: the entry for them with the most samples, if there is one.
+void ViewSession::lookUpReference() {
+    std::shared_ptr<const RenderScene> scene;
+    ReferenceTarget target;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (errors_ && (referenceSource_ == "file" || referenceTarget_ == targetLocked())) return;
+        scene = scene_, target = targetLocked();
+    }
+    std::optional<FoundReference> found =
+        findCachedReference(ReferenceCache::standard(), *scene, target);
+    if (!found) return;
+    useReference(std::make_shared<const Image>(std::move(found->reference.image)), target, "cache",
+                 found->spp);
+}
+
+// Replaces the reference; the worker measures against it from its next pass.
+void ViewSession::useReference(std::shared_ptr<const Image> image, const ReferenceTarget& target,
+                               const std::string& source, int spp) {
+    auto errors = std::make_shared<ErrorHistory>(std::move(image));  // prepares ꟻLIP: outside
+    std::lock_guard<std::mutex> lock(mutex_);
+    errors_ = std::move(errors);
+    referenceTarget_ = target, referenceSource_ = source, referenceSpp_ = spp;
+    errorPoints_.clear();
+}
+
+void ViewSession::buildReference(int spp) {
+    if (spp < 1 || spp > (1 << 24))
+        throw InputError("reference spp must be between 1 and 16777216, got " +
+                         std::to_string(spp));
+    std::shared_ptr<const RenderScene> scene;
+    ReferenceTarget target;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        scene = scene_, target = targetLocked();
+        referenceError_.clear();
+    }
+    const auto done = [this, target, spp](std::shared_ptr<const Image> image,
+                                          const std::string& error) {
+        if (image) return useReference(std::move(image), target, "page", spp);
+        std::lock_guard<std::mutex> lock(mutex_);
+        referenceError_ = error;
+    };
+    std::lock_guard<std::mutex> lock(builderMutex_);
+    builder_.reset();  // cancels one under way: its callback then does not run
+    builder_ = std::make_unique<ReferenceBuilder>(scene, target, spp, threads_, done);
+}
+
+void ViewSession::waitForReference() const {
+    for (;;) {
+        {
+            std::lock_guard<std::mutex> lock(builderMutex_);
+            if (!builder_ || builder_->finished()) return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
 }
 
 std::vector<ErrorPoint> ViewSession::errorPoints() const {
@@ -182,6 +267,7 @@ SessionStatus ViewSession::update(const nlohmann::json& changes) {
     if (restart) requestRestartLocked();
     changed_.notify_all();
     lock.unlock();
+    if (restart) lookUpReference();
     return status();
 }
 
@@ -209,7 +295,7 @@ Frame ViewSession::frame() const {
 }
 
 SessionStatus ViewSession::status() const {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_);
     SessionStatus s;
     s.settings = settings_;
     s.spp = frame_.spp;
@@ -223,6 +309,11 @@ SessionStatus ViewSession::status() const {
     s.generation = frame_.generation;
     s.error = error_;
     s.reference = frame_.a && referenceFits(*frame_.a);
+    if (s.reference) s.referenceSource = referenceSource_, s.referenceSpp = referenceSpp_;
+    s.referenceError = referenceError_;
+    lock.unlock();
+    std::lock_guard<std::mutex> building(builderMutex_);
+    if (builder_ && !builder_->finished()) s.referenceProgress = builder_->progress();
     return s;
 }
 

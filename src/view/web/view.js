@@ -48,11 +48,26 @@ function showStatus(s) {
   $('russian_roulette').checked = s.russian_roulette;
   $('exposure_value').textContent = Number(s.exposure).toFixed(2);
   for (const id of ['relse', 'flip']) $('map').querySelector(`[value=${id}]`).disabled = !s.reference;
+  showReference(s);
   const which = $('points_which');
   if (s.compare && which.options.length === 1) which.add(new Option('B', 'b'));
   if (!s.compare && which.options.length === 2) which.remove(1);
   which.options[0].textContent = `A ${s.sampler}`;
   if (s.compare) which.options[1].textContent = `B ${s.compare}`;
+}
+
+// The reference the error is measured against: a file, the study's cache, or
+// one the page asked for (POST /api/reference), with the progress of a build.
+function showReference(s) {
+  const building = s.reference_progress !== null && s.reference_progress !== undefined;
+  const bar = $('reference_progress');
+  bar.hidden = !building;
+  if (building) bar.value = s.reference_progress;
+  const spp = s.reference_spp ? `${s.reference_spp} spp, ` : '';
+  $('reference_info').textContent = s.reference_error ? `build failed: ${s.reference_error}` :
+    building ? `building: ${Math.round(100 * s.reference_progress)}%` :
+    s.reference ? `${spp}from ${s.reference_source === 'page' ? 'this page' : 'the ' + s.reference_source}` :
+    'none for these settings';
 }
 
 // The display: the image, or its error against the reference (GET
@@ -383,6 +398,9 @@ function wireControls() {
   $('tone_map').addEventListener('change', () => change({ tone_map: $('tone_map').value }));
   $('pause').addEventListener('click', () => change({ paused: !state.status.paused }));
   $('reset').addEventListener('click', () => api('/api/reset', {}));
+  $('reference_build').addEventListener('click', () =>
+    api('/api/reference', { spp: Number($('reference_spp').value) })
+      .then(showStatus).catch((e) => { $('error').textContent = e.message; }));
   $('layout').addEventListener('change', () => { fit(); draw(); });
   $('map').addEventListener('change', () => state.status && refreshImages(state.status));
   for (const id of ['points_which', 'points_x', 'points_y', 'points_count'])
