@@ -32,6 +32,7 @@ TEST_F(ViewCli, BadInputIsOneLineAndExitCode2) {
         {"--scene cornell-box --size 0x5", "size"},
         {"--scene cornell-box --port 70000", "port"},
         {"--scene cornell-box --max-spp 0", "max-spp"},
+        {"--scene cornell-box --equal fast", "--equal"},
     };
     for (const auto& [args, named] : cases) {
         const auto r = runPathlab(std::string("view ") + args, dir);

@@ -113,9 +113,17 @@ TEST(ViewServer, SettingsRestartOnlyForTheRender) {
     EXPECT_EQ(status["generation"], generation + 1);
     EXPECT_EQ(status["sampler"], "halton");
     EXPECT_EQ(status["max_depth"], 2);
+    EXPECT_EQ(status["equal"], "spp");
+    res = postJson(server.client, "/api/settings", R"({"equal": "time"})");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200);
+    status = json::parse(res->body);
+    EXPECT_EQ(status["equal"], "time");
+    EXPECT_EQ(status["generation"], generation + 2) << "the A/B mode restarts";
+    EXPECT_TRUE(status["spp_b"].is_null()) << "no compare sampler, no B count";
     res = postJson(server.client, "/api/reset", "{}");
     ASSERT_TRUE(res);
-    EXPECT_EQ(json::parse(res->body)["generation"], generation + 2);
+    EXPECT_EQ(json::parse(res->body)["generation"], generation + 3);
 }
 
 TEST(ViewServer, DisplayChangesReachThePng) {
@@ -149,6 +157,8 @@ TEST(ViewServer, BadRequestsAreRefusedAndChangeNothing) {
     refused(R"({"max_depth": 5000})", "max_depth");
     refused(R"({"scene": "/no/such/scene.json"})", "scene.json");
     refused(R"({"sampler": )", "JSON");
+    refused(R"({"equal": "fast"})", "equal");
+    refused(R"({"equal": 1})", "equal");
     EXPECT_EQ(server.session.status().generation, generation);
     EXPECT_EQ(server.session.status().settings.sampler, "independent");
 

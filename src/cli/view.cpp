@@ -20,7 +20,7 @@ namespace {
 
 struct ViewOptions {
     view::ViewSettings settings;
-    std::string size, seed = "0", host = "127.0.0.1", reference;
+    std::string size, seed = "0", host = "127.0.0.1", reference, equal = "spp";
     int port = 8642, threads = 0;
     bool noRoulette = false;
 };
@@ -62,6 +62,7 @@ void runView(ViewOptions& o) {
     view::ViewSettings& s = o.settings;
     s.seed = parseSeed(o.seed);
     s.russianRoulette = !o.noRoulette;
+    s.equal = view::parseEqualBy(o.equal, "--equal");
     if (!o.size.empty()) s.size = parseImageSize(o.size, "--size");
     if (s.maxDepth < 0 || s.maxDepth > 1024)
         throw InputError("--max-depth must be between 0 and 1024, got " +
@@ -106,7 +107,10 @@ void addViewCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--sampler", o->settings.sampler, "Sampler name (see `pathlab samplers`)")
         ->capture_default_str();
-    cmd->add_option("--compare", o->settings.compare, "A second sampler, rendered at equal spp");
+    cmd->add_option("--compare", o->settings.compare, "A second sampler, rendered beside A");
+    cmd->add_option("--equal", o->equal,
+                    "Compare A and B at equal spp or at equal render time (spp|time)")
+        ->capture_default_str();
     cmd->add_option("--seed", o->seed, "Seed of the samplers' randomisation")
         ->capture_default_str();
     cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");

@@ -165,8 +165,9 @@ ReferenceRangeFiles referenceRangeFiles(const ReferenceCache& cache, const std::
 // The reference's settings: its sampler is made for all its spp, whichever
 // range is rendered, so that each range draws the whole render's samples.
 RangeSums renderReferenceRange(const RenderScene& scene, const StudySpec& spec, int threads,
-                               int index) {
+                               int index, RenderControl* control) {
     RenderSettings s = studyRenderSettings(spec, threads);
+    s.control = control;
     s.sampler = spec.reference.sampler;
     s.samplesPerPixel = spec.reference.spp;
     s.seed = spec.reference.seed;

@@ -74,9 +74,10 @@ class ReferenceRangeFiles {
 ReferenceRangeFiles referenceRangeFiles(const ReferenceCache& cache, const std::string& cacheKey,
                                         const StudySpec& spec);
 
-// Renders range `index` of the scene's reference with `threads` (0 = all cores).
+// Renders range `index` of the scene's reference with `threads` (0 = all
+// cores); `control` (optional) reports its tiles and may cancel it.
 RangeSums renderReferenceRange(const RenderScene& scene, const StudySpec& spec, int threads,
-                               int index);
+                               int index, RenderControl* control = nullptr);
 
 // The reference from all its ranges, added in range order; a range whose
 // file is missing or damaged is rendered by `renderMissing` first. Its noise

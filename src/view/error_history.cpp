@@ -25,9 +25,10 @@ ErrorHistory::ErrorHistory(std::shared_ptr<const Image> reference)
 
 ErrorHistory::~ErrorHistory() = default;
 
-void ErrorHistory::measure(int spp, const Image& a, const Image* b) {
+void ErrorHistory::measure(int sppA, const Image& a, int sppB, const Image* b) {
     ErrorPoint p;
-    p.spp = spp;
+    p.spp = sppA;
+    p.sppB = b ? sppB : 0;
     p.mseA = meanSquaredError(*reference_, a);
     p.flipA = flip_->evaluate(a).stats.mean;
     if (b) {
@@ -35,7 +36,7 @@ void ErrorHistory::measure(int spp, const Image& a, const Image* b) {
         p.flipB = flip_->evaluate(*b).stats.mean;
     }
     points_.push_back(p);
-    while (nextSpp_ <= spp) nextSpp_ *= 2;
+    while (nextSpp_ <= std::max(p.spp, p.sppB)) nextSpp_ *= 2;
 }
 
 namespace {
@@ -70,16 +71,16 @@ void ErrorHistory::clear() {
 
 nlohmann::json errorJson(const std::vector<ErrorPoint>& points, bool hasB) {
     using nlohmann::json;
-    json spp = json::array(), mseA = json::array(), flipA = json::array(), mseB = json::array(),
-         flipB = json::array();
+    json spp = json::array(), mseA = json::array(), flipA = json::array(), sppB = json::array(),
+         mseB = json::array(), flipB = json::array();
     for (const ErrorPoint& p : points) {
         spp.push_back(p.spp);
         mseA.push_back(p.mseA), flipA.push_back(p.flipA);
-        if (hasB) mseB.push_back(p.mseB), flipB.push_back(p.flipB);
+        if (hasB) sppB.push_back(p.sppB), mseB.push_back(p.mseB), flipB.push_back(p.flipB);
     }
     return json{{"spp", spp},
                 {"a", {{"mse", mseA}, {"flip", flipA}}},
-                {"b", {{"mse", mseB}, {"flip", flipB}}}};
+                {"b", {{"spp", sppB}, {"mse", mseB}, {"flip", flipB}}}};
 }
 
 }  // namespace pathlab::view

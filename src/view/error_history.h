@@ -17,7 +17,8 @@ namespace pathlab::view {
 enum class ErrorMapKind { RelativeSquared, Flip };
 
 struct ErrorPoint {
-    int spp = 0;
+    int spp = 0;   // A's
+    int sppB = 0;  // B's: spp at equal spp, its own count at equal time
     double mseA = 0, flipA = 0, mseB = 0, flipB = 0;  // B: 0 without a compare sampler
 };
 
@@ -28,11 +29,12 @@ class ErrorHistory {
     ~ErrorHistory();
 
     const Image& reference() const { return *reference_; }
-    // Does a pass of `spp` get measured? (The first at or past the next power
-    // of two since the last one measured.)
+    // Does a pass that brings A or B to `spp` get measured? (The first at or
+    // past the next power of two since the last one measured.)
     bool due(int spp) const { return spp >= nextSpp_; }
-    // Measures a pass (b may be null) and appends it.
-    void measure(int spp, const Image& a, const Image* b);
+    // Measures A at sppA and B (null without a compare sampler) at sppB, and
+    // appends the point.
+    void measure(int sppA, const Image& a, int sppB, const Image* b);
     void clear();  // a restart
     // Per pixel, a value in [0, 1] for a colour map: HDR-ꟻLIP's own error
     // (as measured), or the relative squared error (t − r)² / (r² + ε),

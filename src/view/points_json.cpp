@@ -82,7 +82,7 @@ json pointsJson(const SessionStatus& status, const PointsQuery& q) {
     const Vec2i dims = requirePair(q.dims, "dims", "I,J");
     if (dims.x == dims.y)
         throw InputError("dims must name two different dimensions, got '" + q.dims + "'");
-    const int count = pointCount(q.count, status.spp);
+    const int count = pointCount(q.count, q.which == "a" ? status.spp : status.sppB);
 
     const PixelPointsRequest request{sampler, count,
                                      dims.x,  dims.y,

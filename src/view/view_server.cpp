@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <charconv>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -133,6 +134,19 @@ void ViewServer::addApiRoutes() {
             sendError(res, 400, e.what());
         }
     });
+    http_->Post("/api/reference", [this](const httplib::Request& req, httplib::Response& res) {
+        const json body = json::parse(req.body, nullptr, false);
+        if (body.is_discarded()) return sendError(res, 400, "the request body is not JSON");
+        if (!body.is_object() || !body.contains("spp") || !body["spp"].is_number_integer())
+            return sendError(res, 400, "reference spp must be an integer: {\"spp\": N}");
+        const int64_t spp = body["spp"].get<int64_t>();
+        try {
+            session_.buildReference(int(std::clamp<int64_t>(spp, 0, INT32_MAX)));
+        } catch (const InputError& e) {
+            return sendError(res, 400, e.what());
+        }
+        sendJson(res, statusJson(session_.status()));
+    });
     http_->Post("/api/reset", [this](const httplib::Request&, httplib::Response& res) {
         session_.reset();
         sendJson(res, statusJson(session_.status()));
@@ -183,7 +197,7 @@ void ViewServer::addImageRoutes() {
             return sendError(res, 404,
                              which == "b" && frame.a ? "no compare sampler" : "no image yet");
         res.set_header("Cache-Control", "no-store");
-        res.set_header("X-Pathlab-Spp", std::to_string(frame.spp));
+        res.set_header("X-Pathlab-Spp", std::to_string(which == "a" ? frame.spp : frame.sppB));
         res.set_header("X-Pathlab-Generation", std::to_string(frame.generation));
         if (format == "png") {
             const std::shared_ptr<const std::string> png =
@@ -206,6 +220,7 @@ void ViewServer::addImageRoutes() {
         sendJson(res, json{{"x", *x},
                            {"y", *y},
                            {"spp", frame.spp},
+                           {"spp_b", frame.b ? json(frame.sppB) : json()},
                            {"a", pixelJson(frame.a, *x, *y)},
                            {"b", pixelJson(frame.b, *x, *y)}});
     });
@@ -214,9 +229,9 @@ void ViewServer::addImageRoutes() {
 std::shared_ptr<const std::string> ViewServer::displayPng(const Frame& frame, int which,
                                                           const std::string& map) {
     const ViewSettings s = session_.status().settings;
-    const std::string key = std::to_string(frame.generation) + "/" + std::to_string(frame.spp) +
-                            "/" + std::to_string(s.exposure) + "/" + toneMapName(s.toneMap) + "/" +
-                            map;
+    const int spp = which == 0 ? frame.spp : frame.sppB;
+    const std::string key = std::to_string(frame.generation) + "/" + std::to_string(spp) + "/" +
+                            std::to_string(s.exposure) + "/" + toneMapName(s.toneMap) + "/" + map;
     {
         std::lock_guard<std::mutex> lock(pngMutex_);
         if (pngKey_[which] == key) return png_[which];

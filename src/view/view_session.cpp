@@ -6,6 +6,7 @@
 #include "render/accumulation.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
+#include "study/reference_cache.h"
 
 namespace pathlab::view {
 namespace {
@@ -25,24 +26,6 @@ RenderSettings renderSettingsFor(const ViewSettings& v, const std::string& sampl
     return s;
 }
 
-// The sample count of the next pass. The first pass is 1 spp, so a restart
-// shows an image at once. Progressive samplers then add a batch that doubles
-// up to kPacketWidth samples, and beyond while passes take under 0.25 s, and
-// halves when one takes over 1 s, but never below kPacketWidth: a pixel's samples are
-// traced as packets of eight and their paths in batches
-// (render/path_integrator.h), and passes of one sample would leave the
-// packets nearly empty — at 512² sixteen 1-spp passes took 1.9 times as long
-// as one 16-spp render (bench/view_interactivity.py). Other samplers render
-// each pass afresh: doubling the count keeps the total within twice the last
-// pass.
-int nextSampleCount(int spp, bool progressive, double lastPassSeconds, int& batch, int maxSpp) {
-    if (spp == 0) return 1;
-    if (!progressive) return std::min(maxSpp, spp * 2);
-    if ((batch < kPacketWidth || lastPassSeconds < 0.25) && batch < (1 << 20)) batch *= 2;
-    if (lastPassSeconds > 1.0 && batch > kPacketWidth) batch /= 2;
-    return int(std::min<int64_t>(maxSpp, int64_t(spp) + batch));
-}
-
 }  // namespace
 
 std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene) {
@@ -54,14 +37,22 @@ ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScen
     : settings_(std::move(settings)), scene_(std::move(scene)), threads_(threads) {
     validateViewSettings(settings_);
     if (reference) {
-        errors_ = std::make_unique<ErrorHistory>(std::move(reference));
-        referenceScene_ = settings_.scene;
+        // A file given by the user: known to show the scene at its size only.
+        errors_ = std::make_shared<ErrorHistory>(std::move(reference));
+        referenceTarget_ = {settings_.scene,
+                            {errors_->reference().width, errors_->reference().height}};
+        referenceSource_ = "file";
     }
     requestRestartLocked();  // generation 1; no other thread yet
     worker_ = std::thread([this] { work(); });
+    if (!errors_) lookUpReference();
 }
 
 ViewSession::~ViewSession() {
+    {
+        std::lock_guard<std::mutex> lock(builderMutex_);
+        builder_.reset();  // its callback takes mutex_: not held here
+    }
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
@@ -72,18 +63,17 @@ ViewSession::~ViewSession() {
 }
 
 void ViewSession::work() {
-    std::unique_ptr<Accumulation> a, b;
+    std::unique_ptr<Accumulation> acc[2];  // A, B (null without a compare sampler)
+    std::unique_ptr<PassScheduler> plan;
     std::shared_ptr<const RenderScene> scene;
     uint64_t generation = 0;
-    int batch = 1;
-    double lastPass = 0;
     for (;;) {
-        int target = 0;
+        Pass pass;
         {
             std::unique_lock<std::mutex> lock(mutex_);
             const auto hasWork = [&] {
                 return stopping_ || restart_ ||
-                       (!settings_.paused && error_.empty() && frame_.spp < settings_.maxSpp);
+                       (!settings_.paused && error_.empty() && !plan->done());
             };
             if (!hasWork()) {
                 idle_ = true;
@@ -97,24 +87,20 @@ void ViewSession::work() {
                 control_.cancel = false;
                 error_.clear();
                 scene = scene_;
-                a = std::make_unique<Accumulation>(
-                    renderSettingsFor(settings_, settings_.sampler, threads_, &control_));
-                b = settings_.compare.empty()
-                        ? nullptr
-                        : std::make_unique<Accumulation>(
-                              renderSettingsFor(settings_, settings_.compare, threads_, &control_));
+                startLocked(acc, plan);
                 generation = frame_.generation;
-                batch = 1, lastPass = 0;
-                if (errors_) errors_->clear();
                 changed_.notify_all();
             }
-            const bool progressive = a->progressive() && (!b || b->progressive());
-            target = nextSampleCount(frame_.spp, progressive, lastPass, batch, settings_.maxSpp);
+            pass = plan->next();
         }
-        const Clock::time_point start = Clock::now();
+        double seconds[2] = {0, 0};
         try {
-            a->advance(*scene, target);
-            if (b) b->advance(*scene, target);
+            for (int i : {0, 1}) {
+                if (pass.target[i] == 0) continue;
+                const double before = acc[i]->seconds();
+                acc[i]->advance(*scene, pass.target[i]);
+                seconds[i] = acc[i]->seconds() - before;
+            }
         } catch (const RenderCancelled&) {
             continue;  // whoever cancelled asked for a restart or a stop
         } catch (const std::exception& e) {
@@ -123,39 +109,139 @@ void ViewSession::work() {
             changed_.notify_all();
             continue;
         }
-        lastPass = std::chrono::duration<double>(Clock::now() - start).count();
-        bool measure = false;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (generation != frame_.generation || restart_) continue;
-            frame_.a = std::make_shared<const Image>(a->image());
-            frame_.b = b ? std::make_shared<const Image>(b->image()) : nullptr;
-            frame_.spp = target;
-            renderSeconds_ = a->seconds() + (b ? b->seconds() : 0);
-            paths_ = a->paths() + (b ? b->paths() : 0);
-            measure = errors_ && errors_->due(target) && referenceFits(a->image());
-            changed_.notify_all();
-        }
-        if (!measure) continue;
-        // Outside the lock: ꟻLIP takes a while, and only this thread uses errors_.
-        errors_->measure(target, a->image(), b ? &b->image() : nullptr);
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (generation == frame_.generation) errorPoints_ = errors_->points();
+        plan->finished(pass, seconds[0], seconds[1]);
+        if (const auto errors = publish(generation, pass, acc))
+            measureError(generation, *errors, acc);
     }
 }
 
-// Called with the lock held.
+// A new generation: fresh accumulations and pass schedule for the settings.
+void ViewSession::startLocked(std::unique_ptr<Accumulation> (&acc)[2],
+                              std::unique_ptr<PassScheduler>& plan) {
+    const ViewSettings& s = settings_;
+    acc[0] = std::make_unique<Accumulation>(renderSettingsFor(s, s.sampler, threads_, &control_));
+    acc[1] =
+        s.compare.empty()
+            ? nullptr
+            : std::make_unique<Accumulation>(renderSettingsFor(s, s.compare, threads_, &control_));
+    plan = std::make_unique<PassScheduler>(s.equal, acc[1] != nullptr, acc[0]->progressive(),
+                                           acc[1] && acc[1]->progressive(), s.maxSpp);
+    if (errors_) errors_->clear();
+}
+
+// Publishes the images a pass changed; returns the error history when it is
+// due for measuring (then both images exist and fit the reference).
+std::shared_ptr<ErrorHistory> ViewSession::publish(uint64_t generation, const Pass& pass,
+                                                   const std::unique_ptr<Accumulation> (&acc)[2]) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (generation != frame_.generation || restart_) return nullptr;
+    if (pass.target[0]) frame_.a = std::make_shared<const Image>(acc[0]->image());
+    if (pass.target[1]) frame_.b = std::make_shared<const Image>(acc[1]->image());
+    frame_.spp = acc[0]->spp();
+    frame_.sppB = acc[1] ? acc[1]->spp() : 0;
+    renderSeconds_ = acc[0]->seconds() + (acc[1] ? acc[1]->seconds() : 0);
+    paths_ = acc[0]->paths() + (acc[1] ? acc[1]->paths() : 0);
+    changed_.notify_all();
+    const bool complete = frame_.a && (!acc[1] || frame_.b);
+    if (complete && errors_ && errors_->due(std::max(frame_.spp, frame_.sppB)) &&
+        referenceFits(acc[0]->image()))
+        return errors_;
+    return nullptr;
+}
+
+// Outside the lock: ꟻLIP takes a while, and only the worker uses errors_.
+void ViewSession::measureError(uint64_t generation, ErrorHistory& errors,
+                               const std::unique_ptr<Accumulation> (&acc)[2]) {
+    errors.measure(acc[0]->spp(), acc[0]->image(), acc[1] ? acc[1]->spp() : 0,
+                   acc[1] ? &acc[1]->image() : nullptr);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (generation == frame_.generation && &errors == errors_.get()) errorPoints_ = errors.points();
+}
+
+// Called with the lock held. A file given by the user fits its scene at its
+// size; a cached or built one also needs the depth and roulette it was
+// rendered with.
 bool ViewSession::referenceFits(const Image& image) const {
-    return errors_ && settings_.scene == referenceScene_ &&
-           errors_->reference().width == image.width && errors_->reference().height == image.height;
+    if (!errors_ || errors_->reference().width != image.width ||
+        errors_->reference().height != image.height)
+        return false;
+    if (referenceSource_ == "file") return settings_.scene == referenceTarget_.scene;
+    return targetLocked() == referenceTarget_;
+}
+
+// Called with the lock held: what a reference for the current settings shows.
+ReferenceTarget ViewSession::targetLocked() const {
+    const Vec2i size = settings_.size.x > 0 ? settings_.size : scene_->description().resolution;
+    return {settings_.scene, size, settings_.maxDepth, settings_.russianRoulette};
 }
 
 std::vector<float> ViewSession::errorMap(const Image& image, ErrorMapKind kind) const {
+    std::shared_ptr<const ErrorHistory> errors;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         if (!referenceFits(image)) return {};
+        errors = errors_;
     }
-    return errors_->errorMap(image, kind);  // errors_ never changes after construction
+    return errors->errorMap(image, kind);  // reads only the reference
+}
+
+// The study's cache, searched when the current reference does not fit the
+// settings: the entry for them with the most samples, if there is one.
+void ViewSession::lookUpReference() {
+    std::shared_ptr<const RenderScene> scene;
+    ReferenceTarget target;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (errors_ && (referenceSource_ == "file" || referenceTarget_ == targetLocked())) return;
+        scene = scene_, target = targetLocked();
+    }
+    std::optional<FoundReference> found =
+        findCachedReference(ReferenceCache::standard(), *scene, target);
+    if (!found) return;
+    useReference(std::make_shared<const Image>(std::move(found->reference.image)), target, "cache",
+                 found->spp);
+}
+
+// Replaces the reference; the worker measures against it from its next pass.
+void ViewSession::useReference(std::shared_ptr<const Image> image, const ReferenceTarget& target,
+                               const std::string& source, int spp) {
+    auto errors = std::make_shared<ErrorHistory>(std::move(image));  // prepares ꟻLIP: outside
+    std::lock_guard<std::mutex> lock(mutex_);
+    errors_ = std::move(errors);
+    referenceTarget_ = target, referenceSource_ = source, referenceSpp_ = spp;
+    errorPoints_.clear();
+}
+
+void ViewSession::buildReference(int spp) {
+    if (spp < 1 || spp > (1 << 24))
+        throw InputError("reference spp must be between 1 and 16777216, got " +
+                         std::to_string(spp));
+    std::shared_ptr<const RenderScene> scene;
+    ReferenceTarget target;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        scene = scene_, target = targetLocked();
+        referenceError_.clear();
+    }
+    const auto done = [this, target, spp](std::shared_ptr<const Image> image,
+                                          const std::string& error) {
+        if (image) return useReference(std::move(image), target, "page", spp);
+        std::lock_guard<std::mutex> lock(mutex_);
+        referenceError_ = error;
+    };
+    std::lock_guard<std::mutex> lock(builderMutex_);
+    builder_.reset();  // cancels one under way: its callback then does not run
+    builder_ = std::make_unique<ReferenceBuilder>(scene, target, spp, threads_, done);
+}
+
+void ViewSession::waitForReference() const {
+    for (;;) {
+        {
+            std::lock_guard<std::mutex> lock(builderMutex_);
+            if (!builder_ || builder_->finished()) return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
 }
 
 std::vector<ErrorPoint> ViewSession::errorPoints() const {
@@ -181,6 +267,7 @@ SessionStatus ViewSession::update(const nlohmann::json& changes) {
     if (restart) requestRestartLocked();
     changed_.notify_all();
     lock.unlock();
+    if (restart) lookUpReference();
     return status();
 }
 
@@ -197,7 +284,7 @@ void ViewSession::reset() {
 void ViewSession::requestRestartLocked() {
     restart_ = true;
     control_.cancel = true;
-    frame_ = Frame{nullptr, nullptr, 0, frame_.generation + 1};
+    frame_ = Frame{nullptr, nullptr, 0, 0, frame_.generation + 1};
     errorPoints_.clear();
     renderSeconds_ = 0, paths_ = 0, started_ = Clock::now();
 }
@@ -208,17 +295,25 @@ Frame ViewSession::frame() const {
 }
 
 SessionStatus ViewSession::status() const {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_);
     SessionStatus s;
     s.settings = settings_;
     s.spp = frame_.spp;
+    s.sppB = frame_.sppB;
     if (frame_.a) s.width = frame_.a->width, s.height = frame_.a->height;
     s.pathsPerSecond = renderSeconds_ > 0 ? double(paths_) / renderSeconds_ : 0;
     s.elapsed = std::chrono::duration<double>(Clock::now() - started_).count();
-    s.running = !settings_.paused && error_.empty() && frame_.spp < settings_.maxSpp;
+    const bool complete = frame_.spp >= settings_.maxSpp &&
+                          (settings_.compare.empty() || frame_.sppB >= settings_.maxSpp);
+    s.running = !settings_.paused && error_.empty() && !complete;
     s.generation = frame_.generation;
     s.error = error_;
     s.reference = frame_.a && referenceFits(*frame_.a);
+    if (s.reference) s.referenceSource = referenceSource_, s.referenceSpp = referenceSpp_;
+    s.referenceError = referenceError_;
+    lock.unlock();
+    std::lock_guard<std::mutex> building(builderMutex_);
+    if (builder_ && !builder_->finished()) s.referenceProgress = builder_->progress();
     return s;
 }
 

@@ -13,26 +13,34 @@
 #include <vector>
 
 #include "core/image.h"
+#include "render/accumulation.h"
 #include "render/renderer.h"
 #include "view/error_history.h"
+#include "view/reference_builder.h"
+#include "view/reference_lookup.h"
 #include "view/view_settings.h"
 
 namespace pathlab::view {
 
 // The images after a finished pass; shared, never changed once published.
 struct Frame {
-    std::shared_ptr<const Image> a, b;  // b: null without a compare sampler
-    int spp = 0;
-    uint64_t generation = 0;  // increments on every restart
+    std::shared_ptr<const Image> a, b;  // b: null without a compare sampler (or before its pass)
+    int spp = 0;                        // A's
+    int sppB = 0;                       // B's: spp at equal spp, its own count at equal time
+    uint64_t generation = 0;            // increments on every restart
 };
 
 struct SessionStatus {
     ViewSettings settings;
-    int spp = 0, width = 0, height = 0;
-    double pathsPerSecond = 0;  // both samplers' paths over render time since the restart
-    double elapsed = 0;         // wall seconds since the restart
-    bool reference = false;     // is the error against a reference measured?
-    bool running = false;       // neither paused nor at max_spp
+    int spp = 0, sppB = 0, width = 0, height = 0;  // sppB: Frame's
+    double pathsPerSecond = 0;      // both samplers' paths over render time since the restart
+    double elapsed = 0;             // wall seconds since the restart
+    bool reference = false;         // is the error against a reference measured?
+    std::string referenceSource;    // "file", "cache" or "page"; "" without one
+    int referenceSpp = 0;           // of a cached or page-built one; 0: unknown
+    double referenceProgress = -1;  // of one being built, 0 … 1; −1: none
+    std::string referenceError;     // why the last build failed
+    bool running = false;           // neither paused nor at max_spp
     uint64_t generation = 0;
     std::string error;  // a render that failed (then running is false)
 };
@@ -45,7 +53,9 @@ class ViewSession {
     // Starts rendering at once. `scene` is settings.scene, loaded. With a
     // `reference` (linear RGB), the error of A and B against it is measured
     // at log-spaced spp (ErrorHistory) while the scene is that first one and
-    // the image has the reference's size.
+    // the image has the reference's size. Without one, and whenever the
+    // render settings change, the study's reference cache is searched for a
+    // reference of the scene and settings (reference_lookup.h).
     ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene, int threads = 0,
                 std::shared_ptr<const Image> reference = nullptr);
     ~ViewSession();  // stops the worker
@@ -69,11 +79,26 @@ class ViewSession {
     std::vector<float> errorMap(const Image& image, ErrorMapKind kind) const;
     // Blocks until the worker waits for work (paused, done, failed).
     void waitUntilIdle() const;
+    // Starts rendering a reference of `spp` for the current settings in the
+    // background (cancelling one under way), stored in the study's cache;
+    // the live error starts when it is done. Throws InputError for a bad spp.
+    void buildReference(int spp);
+    // Blocks until no reference is being built; for tests.
+    void waitForReference() const;
 
   private:
     void work();
+    void startLocked(std::unique_ptr<Accumulation> (&acc)[2], std::unique_ptr<PassScheduler>& plan);
+    std::shared_ptr<ErrorHistory> publish(uint64_t generation, const Pass& pass,
+                                          const std::unique_ptr<Accumulation> (&acc)[2]);
+    void measureError(uint64_t generation, ErrorHistory& errors,
+                      const std::unique_ptr<Accumulation> (&acc)[2]);
     bool referenceFits(const Image& image) const;
     void requestRestartLocked();
+    ReferenceTarget targetLocked() const;
+    void lookUpReference();
+    void useReference(std::shared_ptr<const Image> image, const ReferenceTarget& target,
+                      const std::string& source, int spp);
 
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
@@ -87,9 +112,15 @@ class ViewSession {
     uint64_t paths_ = 0;
     std::chrono::steady_clock::time_point started_;
     RenderControl control_;
-    std::unique_ptr<ErrorHistory> errors_;  // the worker's
-    std::string referenceScene_;            // the scene the reference shows
-    std::vector<ErrorPoint> errorPoints_;   // errors_'s, published
+    // The reference's error history: replaced whole when a reference comes
+    // (never changed by other threads than the worker, which measures).
+    std::shared_ptr<ErrorHistory> errors_;
+    ReferenceTarget referenceTarget_;  // what it shows
+    std::string referenceSource_, referenceError_;
+    int referenceSpp_ = 0;
+    mutable std::mutex builderMutex_;  // never taken inside mutex_'s hold
+    std::unique_ptr<ReferenceBuilder> builder_;
+    std::vector<ErrorPoint> errorPoints_;  // errors_'s, published
     std::thread worker_;
 };
 

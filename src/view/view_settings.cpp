@@ -57,6 +57,8 @@ void applyOne(ViewSettings& s, const std::string& key, const json& v) {
         s.russianRoulette = boolOf(v, key);
     } else if (key == "max_spp") {
         s.maxSpp = inRange(integerOf(v, key), 1, 1 << 24, key);
+    } else if (key == "equal") {
+        s.equal = parseEqualBy(stringOf(v, key), "setting 'equal'");
     } else if (key == "exposure") {
         if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 64)
             throw InputError("setting 'exposure' must be a number of stops from -64 to 64");
@@ -102,6 +104,16 @@ ToneMap parseToneMap(const std::string& name) {
     for (ToneMap t : {ToneMap::Linear, ToneMap::Srgb, ToneMap::Aces})
         if (name == toneMapName(t)) return t;
     throw InputError("unknown tone map '" + name + "' (linear, srgb, aces)");
+}
+
+const char* equalByName(EqualBy equal) {
+    return equal == EqualBy::Time ? "time" : "spp";
+}
+
+EqualBy parseEqualBy(const std::string& name, const std::string& what) {
+    for (EqualBy e : {EqualBy::Spp, EqualBy::Time})
+        if (name == equalByName(e)) return e;
+    throw InputError(what + " must be spp or time, got '" + name + "'");
 }
 
 }  // namespace pathlab::view

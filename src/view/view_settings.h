@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/math.h"
+#include "view/pass_scheduler.h"
 
 namespace pathlab::view {
 
@@ -22,7 +23,8 @@ struct ViewSettings {
     Vec2i size{0, 0};  // 0×0: the scene's own
     int maxDepth = 8;
     bool russianRoulette = true;
-    int maxSpp = 65536;  // accumulation stops there
+    int maxSpp = 65536;            // accumulation stops there
+    EqualBy equal = EqualBy::Spp;  // A and B at equal spp, or equal render time
     // The display.
     float exposure = 0;  // stops: pixels are multiplied by 2^exposure
     ToneMap toneMap = ToneMap::Srgb;
@@ -31,7 +33,7 @@ struct ViewSettings {
     bool sameRender(const ViewSettings& o) const {
         return scene == o.scene && sampler == o.sampler && compare == o.compare && seed == o.seed &&
                size.x == o.size.x && size.y == o.size.y && maxDepth == o.maxDepth &&
-               russianRoulette == o.russianRoulette && maxSpp == o.maxSpp;
+               russianRoulette == o.russianRoulette && maxSpp == o.maxSpp && equal == o.equal;
     }
 };
 
@@ -41,7 +43,7 @@ void validateViewSettings(const ViewSettings& settings);
 
 // `settings` with the members a JSON object names replaced ("scene",
 // "sampler", "compare", "seed", "width", "height", "max_depth",
-// "russian_roulette", "max_spp", "exposure", "tone_map", "paused"), then
+// "russian_roulette", "max_spp", "equal", "exposure", "tone_map", "paused"), then
 // validated. Throws InputError naming an unknown key, a value of the wrong
 // type or one out of range.
 ViewSettings applySettingsJson(ViewSettings settings, const nlohmann::json& changes);
@@ -49,5 +51,8 @@ ViewSettings applySettingsJson(ViewSettings settings, const nlohmann::json& chan
 // The JSON spellings of settings.
 const char* toneMapName(ToneMap toneMap);
 ToneMap parseToneMap(const std::string& name);  // throws InputError
+const char* equalByName(EqualBy equal);         // "spp", "time"
+// Throws InputError naming `what` (the option or setting).
+EqualBy parseEqualBy(const std::string& name, const std::string& what);
 
 }  // namespace pathlab::view

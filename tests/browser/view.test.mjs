@@ -138,6 +138,17 @@ await check("zoom magnifies by whole pixels", async () => {
   await page.waitForFunction((z) => window.pathlabView.zoom === 2 * z, z0, { timeout: 5000 });
   await page.screenshot({ path: path.join(artifactDir, "view-zoomed.png") });
 });
+await check("equal time through the page: A and B show counts of their own", async () => {
+  const before = await status();
+  await page.selectOption("#equal", "time");
+  await page.waitForFunction((g) => {
+    const s = window.pathlabView.status;
+    return s.generation > g && s.equal === "time" && s.spp >= 1 && s.spp_b >= 1;
+  }, before.generation, { timeout: 30000 });
+  await page.waitForFunction(() => /\(\d+ spp\) vs .* \(\d+ spp\)/.test(
+    document.getElementById("stats").textContent), null, { timeout: 10000 });
+  await page.screenshot({ path: path.join(artifactDir, "view-equal-time.png") });
+});
 await check("no console errors", async () => {
   assert.deepEqual(problems, []);
 });

@@ -30,13 +30,16 @@ function format(n) {
 }
 
 function showStatus(s) {
-  const b = s.compare ? ` vs ${s.compare}` : '';
-  $('stats').textContent = `${s.sampler}${b} · ${s.spp} spp · ${format(s.paths_per_second)}paths/s` +
+  // At equal time A and B have counts of their own.
+  const b = !s.compare ? '' : s.equal === 'time' ? ` (${s.spp} spp) vs ${s.compare} (${s.spp_b} spp)` :
+    ` vs ${s.compare}`;
+  const spp = s.compare && s.equal === 'time' ? 'equal time' : `${s.spp} spp`;
+  $('stats').textContent = `${s.sampler}${b} · ${spp} · ${format(s.paths_per_second)}paths/s` +
     ` · ${s.elapsed.toFixed(1)} s · ${s.width}×${s.height}` + (s.paused ? ' · paused' :
     s.running ? '' : ' · done');
   $('error').textContent = s.error || '';
   $('pause').textContent = s.paused ? 'Resume' : 'Pause';
-  for (const key of ['scene', 'seed', 'max_depth', 'exposure', 'tone_map']) {
+  for (const key of ['scene', 'seed', 'max_depth', 'equal', 'exposure', 'tone_map']) {
     const el = $(key);
     if (document.activeElement !== el) el.value = s[key];
   }
@@ -45,11 +48,26 @@ function showStatus(s) {
   $('russian_roulette').checked = s.russian_roulette;
   $('exposure_value').textContent = Number(s.exposure).toFixed(2);
   for (const id of ['relse', 'flip']) $('map').querySelector(`[value=${id}]`).disabled = !s.reference;
+  showReference(s);
   const which = $('points_which');
   if (s.compare && which.options.length === 1) which.add(new Option('B', 'b'));
   if (!s.compare && which.options.length === 2) which.remove(1);
   which.options[0].textContent = `A ${s.sampler}`;
   if (s.compare) which.options[1].textContent = `B ${s.compare}`;
+}
+
+// The reference the error is measured against: a file, the study's cache, or
+// one the page asked for (POST /api/reference), with the progress of a build.
+function showReference(s) {
+  const building = s.reference_progress !== null && s.reference_progress !== undefined;
+  const bar = $('reference_progress');
+  bar.hidden = !building;
+  if (building) bar.value = s.reference_progress;
+  const spp = s.reference_spp ? `${s.reference_spp} spp, ` : '';
+  $('reference_info').textContent = s.reference_error ? `build failed: ${s.reference_error}` :
+    building ? `building: ${Math.round(100 * s.reference_progress)}%` :
+    s.reference ? `${spp}from ${s.reference_source === 'page' ? 'this page' : 'the ' + s.reference_source}` :
+    'none for these settings';
 }
 
 // The display: the image, or its error against the reference (GET
@@ -64,12 +82,13 @@ async function fetchImage(which, map) {
 
 async function refreshImages(s) {
   const map = mapShown(s);
-  const key = [s.generation, s.spp, s.exposure, s.tone_map, map].join('/');
+  const key = [s.generation, s.spp, s.spp_b, s.exposure, s.tone_map, map].join('/');
   if (state.loading || key === state.shown || s.spp === 0) return;
   state.loading = true;
   try {
+    // At equal time B's first pass may not have landed yet.
     const [a, b] = await Promise.all([fetchImage('a', map),
-      s.compare ? fetchImage('b', map) : null]);
+      s.compare && s.spp_b > 0 ? fetchImage('b', map) : null]);
     if (a) {
       state.images = { a, b };
       state.shown = key;
@@ -89,12 +108,16 @@ async function refreshImages(s) {
 function plotError(e) {
   const c = $('error_plot'), g = c.getContext('2d'), W = c.width, H = c.height, m = 18;
   g.clearRect(0, 0, W, H);
-  const series = [[e.a.mse, '#4af', []], [e.b.mse, '#fa4', []], [e.a.flip, '#4af', [4, 3]],
-    [e.b.flip, '#fa4', [4, 3]]].filter(([v]) => v.length === e.spp.length && v.length > 0);
-  const values = series.flatMap(([v]) => v).filter((v) => v > 0);
+  // B's own counts: at equal time they differ from A's.
+  const sppB = e.b.spp && e.b.spp.length ? e.b.spp : e.spp;
+  const series = [[e.spp, e.a.mse, '#4af', []], [sppB, e.b.mse, '#fa4', []],
+    [e.spp, e.a.flip, '#4af', [4, 3]], [sppB, e.b.flip, '#fa4', [4, 3]]]
+    .filter(([x, v]) => v.length === x.length && v.length > 0);
+  const values = series.flatMap(([, v]) => v).filter((v) => v > 0);
   if (!values.length) return;
   const lx = (spp) => Math.log2(spp), ly = (v) => Math.log10(v);
-  const x0 = 0, x1 = Math.max(1, lx(e.spp[e.spp.length - 1]));
+  const last = Math.max(...series.map(([x]) => x[x.length - 1]));
+  const x0 = 0, x1 = Math.max(1, lx(last));
   const y0 = Math.floor(ly(Math.min(...values))), y1 = Math.ceil(ly(Math.max(...values)));
   const px = (spp) => m + (lx(spp) - x0) / (x1 - x0) * (W - 2 * m);
   const py = (v) => H - m - (ly(v) - y0) / Math.max(1, y1 - y0) * (H - 2 * m);
@@ -104,19 +127,19 @@ function plotError(e) {
   g.font = '10px system-ui';
   g.fillText(`1e${y1}`, 0, m - 4);
   g.fillText(`1e${y0}`, 0, H - 4);
-  g.fillText(`${e.spp[e.spp.length - 1]} spp`, W - m - 40, H - 4);
-  const first = e.a.mse[0], last = e.spp[e.spp.length - 1];
+  g.fillText(`${last} spp`, W - m - 40, H - 4);
+  const first = e.a.mse[0];
   g.strokeStyle = '#888';
   g.setLineDash([]);
   g.beginPath();
   g.moveTo(px(1), py(first));
   g.lineTo(px(last), py(first / last));
   g.stroke();
-  for (const [v, colour, dash] of series) {
+  for (const [x, v, colour, dash] of series) {
     g.strokeStyle = colour;
     g.setLineDash(dash);
     g.beginPath();
-    v.forEach((y, i) => (i ? g.lineTo : g.moveTo).call(g, px(e.spp[i]), py(Math.max(y, 1e-30))));
+    v.forEach((y, i) => (i ? g.lineTo : g.moveTo).call(g, px(x[i]), py(Math.max(y, 1e-30))));
     g.stroke();
   }
   g.setLineDash([]);
@@ -125,7 +148,7 @@ function plotError(e) {
 async function refreshError(s) {
   $('error_panel').hidden = !s.reference;
   if (!s.reference) return;
-  const key = `${s.generation}/${s.spp}`;
+  const key = `${s.generation}/${s.spp}/${s.spp_b}`;
   if (key === state.errorShown) return;
   state.errorShown = key;
   const e = await api('/api/error');
@@ -187,7 +210,9 @@ function draw() {
   ctx.fillStyle = '#fff';
   ctx.fillRect(sx - 1, state.panY, 2, h);
   const s = state.status;
-  const names = state.swapped ? [s.compare, s.sampler] : [s.sampler, s.compare];
+  const label = (name, spp) => s.equal === 'time' ? `${name} · ${spp} spp` : name;
+  const names = [label(s.sampler, s.spp), label(s.compare, s.spp_b)];
+  if (state.swapped) names.reverse();
   ctx.font = '12px system-ui';
   ctx.fillText(names[0], state.panX + 4, state.panY + 14);
   ctx.fillText(names[1], sx + 4, state.panY + 14);
@@ -211,8 +236,9 @@ async function showPixel(p) {
     if (id !== pixelRequest) return;
     const rgb = (c) => c ? c.map((x) => x.toPrecision(5)).join(' ') : '—';
     const s = state.status;
+    const sppB = v.b && v.spp_b !== v.spp ? ` (${v.spp_b} spp)` : '';
     $('pixel').textContent = `(${v.x}, ${v.y}) at ${v.spp} spp\nA ${s.sampler}: ${rgb(v.a)}` +
-      (v.b ? `\nB ${s.compare}: ${rgb(v.b)}` : '');
+      (v.b ? `\nB ${s.compare}${sppB}: ${rgb(v.b)}` : '');
   } catch (e) { /* the image is between generations */ }
 }
 
@@ -365,12 +391,16 @@ function wireControls() {
   $('scene').addEventListener('change', () => change({ scene: $('scene').value }));
   $('sampler').addEventListener('change', () => change({ sampler: $('sampler').value }));
   $('compare').addEventListener('change', () => change({ compare: $('compare').value || null }));
+  $('equal').addEventListener('change', () => change({ equal: $('equal').value }));
   $('russian_roulette').addEventListener('change',
     () => change({ russian_roulette: $('russian_roulette').checked }));
   $('exposure').addEventListener('input', () => change({ exposure: Number($('exposure').value) }));
   $('tone_map').addEventListener('change', () => change({ tone_map: $('tone_map').value }));
   $('pause').addEventListener('click', () => change({ paused: !state.status.paused }));
   $('reset').addEventListener('click', () => api('/api/reset', {}));
+  $('reference_build').addEventListener('click', () =>
+    api('/api/reference', { spp: Number($('reference_spp').value) })
+      .then(showStatus).catch((e) => { $('error').textContent = e.message; }));
   $('layout').addEventListener('change', () => { fit(); draw(); });
   $('map').addEventListener('change', () => state.status && refreshImages(state.status));
   for (const id of ['points_which', 'points_x', 'points_y', 'points_count'])
