@@ -40,7 +40,8 @@ $(PGO_DATA)/trained: $(PGO_SOURCES)
 	@if [ -f $(BUILD)/build.ninja ]; then cmake --build $(BUILD) --target clean >/dev/null; fi
 	@touch $@
 
-build: setup $(PGO_STAMP) scenes/pbrt/sky-sun.pfm scenes/pbrt/textured-bricks.png
+build: setup $(PGO_STAMP) scenes/pbrt/sky-sun.pfm scenes/pbrt/textured-bricks.png \
+	scenes/pbrt/bump-normal-heights.png
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(RELEASE_OPTIONS) >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
@@ -51,6 +52,10 @@ scenes/pbrt/sky-sun.pfm: scripts/make_sky_sun.py | setup
 # The brick image map of scenes/pbrt/textured.pbrt, generated, not stored.
 scenes/pbrt/textured-bricks.png: scripts/make_texture_png.py
 	@/usr/bin/python3 scripts/make_texture_png.py $@
+
+# The height and normal maps of scenes/pbrt/bump-normal.pbrt, generated, not stored.
+scenes/pbrt/bump-normal-heights.png: scripts/make_bump_maps.py
+	@/usr/bin/python3 scripts/make_bump_maps.py scenes/pbrt
 
 # The Python module alone, into $(BUILD)/python/pathlab (docs/python.md);
 # `make build` builds it with everything else, `make test` runs its pytest suite.

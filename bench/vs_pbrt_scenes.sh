@@ -33,6 +33,8 @@ out=$(cd "$out" && pwd)
 # envmap-sun.pbrt's sky is generated, not committed.
 [[ -f $root/scenes/pbrt/sky-sun.pfm ]] ||
     "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_sky_sun.py" "$root/scenes/pbrt/sky-sun.pfm"
+[[ -f $root/scenes/pbrt/bump-normal-heights.png ]] ||
+    "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_bump_maps.py" "$root/scenes/pbrt"
 [[ -f $root/scenes/pbrt/textured-bricks.png ]] ||
     "${PYTHON:-/usr/bin/python3}" "$root/scripts/make_texture_png.py" \
         "$root/scenes/pbrt/textured-bricks.png"

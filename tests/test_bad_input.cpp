@@ -95,6 +95,11 @@ const BadInput kCases[] = {
      "out.png", "{dir}/missing-include.pbrt:2:1: file '{dir}/nothere.pbrt' does not exist"},
     {"pbrt: missing PLY", "render --scene {dir}/missing-ply.pbrt -o {dir}/out.png", "out.png",
      "{dir}/missing-ply.pbrt:2:1: file 'nothere.ply' does not exist (looked in '{dir}')"},
+    {"pbrt: missing normal map", "render --scene {dir}/missing-normalmap.pbrt -o {dir}/out.png",
+     "out.png",
+     "{dir}/missing-normalmap.pbrt:2:20: file 'nothere.png' does not exist (looked in '{dir}')"},
+    {"missing bump map", "render --scene {dir}/missing-bumpmap.json -o {dir}/out.png", "out.png",
+     "{dir}/missing-bumpmap.json: materials.m.bumpMap: file '{dir}/nothere.png' does not exist"},
     {"pbrt: truncated PLY", "render --scene {dir}/truncated-ply.pbrt -o {dir}/out.png", "out.png",
      "TRUNCATED-PLY"},
     {"pbrt: index out of range", "render --scene {dir}/bad-index.pbrt -o {dir}/out.png", "out.png",
@@ -296,6 +301,11 @@ class BadInputTable : public ::testing::Test {
                           std::string(name) +
                           R"(-texel.pfm"}},
                 "meshes": [{"material": "m", "quads": [[[-1,0,-1], [-1,0,1], [1,0,1], [1,0,-1]]]}])"));
+        put("missing-bumpmap.json",
+            sceneWith(R"(, "materials": {"m": {"type": "diffuse", "bumpMap": "nothere.png"}},
+                "meshes": [{"material": "m", "quads": [[[-1,0,-1], [-1,0,1], [1,0,1], [1,0,-1]]]}])"));
+        put("missing-normalmap.pbrt",
+            "WorldBegin\nMaterial \"diffuse\" \"string normalmap\" \"nothere.png\"\n");
         std::string badFov = sceneWith("");
         badFov.replace(badFov.find("\"fovY\": 40"), 10, "\"fovY\": 0");
         put("bad-fov.json", badFov);

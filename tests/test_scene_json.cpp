@@ -308,9 +308,11 @@ TEST(JsonScene, DocumentedExampleLoads) {
     Image fur(1, 1);
     writeImage((dir.path() / "fur.png").string(), fur);
     writeImage((dir.path() / "sky.exr").string(), Image(4, 4));
+    writeImage((dir.path() / "tiles-normals.png").string(), fur);
+    writeImage((dir.path() / "heights.png").string(), fur);
     const SceneDescription s = loadScene(dir.write("example.json", example));
     EXPECT_EQ(s.name, "example");
-    EXPECT_EQ(s.materials.size(), 15u);  // fourteen named and the lights' black one
+    EXPECT_EQ(s.materials.size(), 17u);  // sixteen named and the lights' black one
     EXPECT_EQ(s.spheres.size(), 1u);
     EXPECT_EQ(s.punctualLights.size(), 3u);
     EXPECT_EQ(s.environmentMap.width, 4);

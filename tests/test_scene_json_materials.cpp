@@ -85,7 +85,8 @@ TEST(JsonMaterials, BadValuesNameTheirKey) {
     EXPECT_EQ(errorOf(R"("m": {"type": "mix", "materials": ["m", "m"]})"),
               "test.json: materials: mix material 'm' contains itself");
     EXPECT_EQ(errorOf(R"("m": {"type": "thindielectric", "roughness": 0.1})"),
-              "test.json: materials.m: unknown key 'roughness' (expected one of: type, ior)");
+              "test.json: materials.m: unknown key 'roughness' (expected one of: type, ior, "
+              "normalMap, bumpMap, bumpScale)");
     EXPECT_EQ(errorOf(R"("m": {"type": "diffusetransmission", "transmittance": 2})"),
               "test.json: materials.m.transmittance: must be at most 1");
 }

@@ -114,6 +114,9 @@ void RenderScene::fillInstanced(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInte
         si->p = o + d * t;
         si->ng = si->ns = toWorldNormal(frame.normalMatrix, oo + od * t - s.center);
         si->material = s.material;
+        if (anyMapped_ && mapped_[size_t(si->material)]) [[unlikely]]
+            bumpSphere(s, oo + od * t - s.center,
+                       &desc_.instances[accel_->instanceIndex(hit.instId)].objectToWorld, d, si);
         return;
     }
     si->p = o + d * hit.t;
@@ -141,6 +144,9 @@ void RenderScene::fillInstanced(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInte
         si->uv = {t0.x * b0 + t1.x * b1 + t2.x * b2, t0.y * b0 + t1.y * b1 + t2.y * b2};
     }
     si->material = mesh.material;
+    if (anyMapped_ && mapped_[size_t(si->material)]) [[unlikely]]
+        bumpTriangle(desc_.objects[object].meshes[hit.geomId], hit.primId,
+                     &desc_.instances[accel_->instanceIndex(hit.instId)].objectToWorld, d, si);
 }
 
 }  // namespace pathlab

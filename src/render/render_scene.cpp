@@ -12,6 +12,19 @@
 
 namespace pathlab {
 
+namespace {
+
+// Whether material m, or a component of it if a mix, has a bump or normal map
+// (loaders reject cyclic mixes, so this ends).
+bool hasMap(const std::vector<Material>& materials, int m) {
+    const Material& mat = materials[size_t(m)];
+    if (mat.type == MaterialType::Mix)
+        return hasMap(materials, mat.mix[0]) || hasMap(materials, mat.mix[1]);
+    return mat.normalMap >= 0 || mat.displacementTexture >= 0;
+}
+
+}  // namespace
+
 RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
     : desc_(std::move(desc)) {
     // Embree shares the meshes' positions and indices (the description outlives
@@ -46,6 +59,9 @@ RenderScene::RenderScene(SceneDescription desc, LightSampling lightSampling)
                              m.roughnessTexture >= 0 || m.roughnessVTexture >= 0));
         layered_.push_back(coatedBsdf(m));
     }
+    for (size_t m = 0; m < desc_.materials.size(); ++m)
+        mapped_.push_back(hasMap(desc_.materials, int(m)));
+    anyMapped_ = std::any_of(mapped_.begin(), mapped_.end(), [](char c) { return c; });
     allLambertian_ = std::all_of(lambertian_.begin(), lambertian_.end(), [](char c) { return c; });
     setupInstances();
 }
@@ -130,6 +146,8 @@ void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
         si->ng = si->ns = normalize(si->p - s.center);
         si->uv = {0, 0};
         si->material = s.material;
+        if (anyMapped_ && mapped_[size_t(si->material)]) [[unlikely]]
+            bumpSphere(s, si->p - s.center, nullptr, d, si);
         return;
     }
     si->p = o + d * hit.t;
@@ -151,6 +169,8 @@ void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
     }
     si->material = mesh.material;
     si->light = mesh.triangleLights[hit.primId];
+    if (anyMapped_ && mapped_[size_t(si->material)]) [[unlikely]]
+        bumpTriangle(desc_.meshes[hit.geomId], hit.primId, nullptr, d, si);
 }
 
 }  // namespace pathlab

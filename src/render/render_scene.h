@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/bsdf.h"
+#include "render/bump_mapping.h"
 #include "render/layered/layered_bsdf.h"
 #include "render/lights.h"
 #include "scene/embree_accel.h"
@@ -87,6 +88,19 @@ class RenderScene {
     [[gnu::noinline]] Bsdf texturedBsdf(const Material& m, const SurfaceInteraction& si) const;
     [[gnu::noinline]] Vec3f texturedAlbedo(const Material& m, const SurfaceInteraction& si) const;
     void fillInteraction(Vec3f o, Vec3f d, const RayHit& hit, SurfaceInteraction* si) const;
+    // si's shading normal perturbed by the bump or normal map of the material
+    // bsdfAt will shade it with (bump_shading.cpp), from the geometry of the
+    // triangle (placed by `instance` when not null) or sphere hit (`local`:
+    // the hit minus the centre, in the sphere's own space). Out of line and
+    // cold: scenes without maps keep their hit path.
+    [[gnu::noinline]] void bumpTriangle(const Mesh& mesh, unsigned prim, const Affine* instance,
+                                        Vec3f d, SurfaceInteraction* si) const;
+    [[gnu::noinline]] void bumpSphere(const Sphere& sphere, Vec3f local, const Affine* instance,
+                                      Vec3f d, SurfaceInteraction* si) const;
+    // The material whose map applies at si seen along d (a mix resolved as
+    // bsdfAt resolves it); null where it has none.
+    const Material* mappedMaterial(const SurfaceInteraction& si, Vec3f d) const;
+    void applyMap(const Material& m, const ShadingGeometry& g, SurfaceInteraction* si) const;
     // fillInteraction for a hit inside an instance. Out of line and cold, so
     // that scenes without instances keep the hit path they had.
     [[gnu::noinline]] void fillInstanced(Vec3f o, Vec3f d, const RayHit& hit,
@@ -131,6 +145,9 @@ class RenderScene {
     float epsilon_ = 1e-4f;
     std::vector<char> lambertian_;  // per material
     std::vector<char> textured_;    // per material: some parameter is a texture
+    // Per material: it, or a mix's component, has a bump or normal map.
+    std::vector<char> mapped_;
+    bool anyMapped_ = false;
     // Per material: the layered BSDF of a coated material (else empty),
     // built once, which bsdfAt's Bsdf points to.
     std::vector<std::optional<LayeredBsdf>> layered_;

@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "scene/mesh_utils.h"
 #include "scene/obj_loader.h"
 #include "scene/texture_loader.h"
+#include "scene/textures/image_encoding.h"
 
 namespace pathlab {
 namespace fs = std::filesystem;
@@ -56,18 +58,21 @@ class Node {
     void requireObject() const {
         if (!j_.is_object()) fail(std::string("expected an object, got ") + typeName(j_));
     }
-    // Every key must be one of `allowed`.
-    void keys(std::initializer_list<std::string_view> allowed) const {
+    // Every key must be one of `allowed` or `more`.
+    void keys(std::initializer_list<std::string_view> allowed,
+              std::span<const std::string_view> more = {}) const {
         requireObject();
         for (const auto& [key, value] : j_.items()) {
             bool ok = false;
             for (std::string_view a : allowed) ok |= key == a;
+            for (std::string_view a : more) ok |= key == a;
             if (ok) continue;
             std::string list;
             for (std::string_view a : allowed) {
                 if (!list.empty()) list += ", ";
                 list += a;
             }
+            for (std::string_view a : more) list += ", " + std::string(a);
             fail("unknown key '" + key + "' (expected one of: " + list + ")");
         }
     }
@@ -241,48 +246,74 @@ Coating parseCoating(const Node& n) {
     return c;
 }
 
+// The keys of a material's bump and normal maps (render/bump_mapping.h).
+constexpr std::string_view kMapKeys[] = {"normalMap", "bumpMap", "bumpScale"};
+
+// An image named by node t, read once per file; `linear`: its code values
+// taken as linear (a PNG's sRGB decoding undone), as maps need.
+int loadImage(const Node& t, Builder& b, bool linear) {
+    const std::string path = t.file().lexically_normal().string();
+    const std::string key = linear ? path + "\nlinear" : path;
+    auto it = b.textureIndex.find(key);
+    if (it != b.textureIndex.end()) return it->second;
+    try {
+        b.scene.textures.push_back(loadTexture(path));
+    } catch (const InputError& e) {
+        t.fail(e.what());
+    }
+    if (linear) reencodeTexels(b.scene.textures.back(), ImageEncoding{ImageEncoding::Linear});
+    return b.textureIndex.emplace(key, int(b.scene.textures.size()) - 1).first->second;
+}
+
+// "normalMap": an image of tangent-space normals; or "bumpMap": an image of
+// heights (its first channel, times "bumpScale", default 1), read linearly,
+// looked up at the hit's (u, v) as pbrt-v4's imagemap (bilinear, repeating).
+void parseMaps(const Node& n, Material& m, Builder& b) {
+    if (n.has("normalMap") && n.has("bumpMap"))
+        n.fail("give either 'normalMap' or 'bumpMap', not both");
+    if (n.has("bumpScale") && !n.has("bumpMap")) n["bumpScale"].fail("needs 'bumpMap'");
+    if (n.has("normalMap")) m.normalMap = loadImage(n["normalMap"], b, true);
+    if (!n.has("bumpMap")) return;
+    ShadingTexture heights;
+    heights.kind = TextureKind::Image;
+    heights.isFloat = true;
+    heights.image = loadImage(n["bumpMap"], b, true);
+    if (n.has("bumpScale")) heights.scale = n["bumpScale"].number();
+    b.scene.shadingTextures.push_back(heights);
+    m.displacementTexture = int(b.scene.shadingTextures.size()) - 1;
+}
+
 Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
     Material m;
     m.name = name;
     const std::string type = n["type"].string();
     if (type == "diffuse") {
-        n.keys({"type", "albedo", "texture"});
+        n.keys({"type", "albedo", "texture"}, kMapKeys);
         m.type = MaterialType::Diffuse;
         // The texture is the albedo (scene.h); both would leave one unused.
         if (n.has("albedo") && n.has("texture"))
             n.fail("give either 'albedo' or 'texture', not both");
         if (n.has("albedo")) m.albedo = n["albedo"].colour();
         if (n.has("texture")) {
-            const Node t = n["texture"];
-            const std::string path = t.file().lexically_normal().string();
-            auto it = b.textureIndex.find(path);
-            if (it == b.textureIndex.end()) {
-                try {
-                    b.scene.textures.push_back(loadTexture(path));
-                } catch (const InputError& e) {
-                    t.fail(e.what());
-                }
-                it = b.textureIndex.emplace(path, int(b.scene.textures.size()) - 1).first;
-            }
-            m.texture = it->second;
+            m.texture = loadImage(n["texture"], b, false);
             m.albedo = Vec3f(1.0f);
         }
     } else if (type == "mirror") {
-        n.keys({"type", "albedo"});
+        n.keys({"type", "albedo"}, kMapKeys);
         m.type = MaterialType::Mirror;
         m.albedo = n.has("albedo") ? n["albedo"].colour() : Vec3f(1.0f);
     } else if (type == "dielectric" || type == "thindielectric") {
         if (type == "dielectric")
-            n.keys({"type", "ior", "roughness", "roughnessV"});
+            n.keys({"type", "ior", "roughness", "roughnessV"}, kMapKeys);
         else
-            n.keys({"type", "ior"});
+            n.keys({"type", "ior"}, kMapKeys);
         m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
         m.albedo = Vec3f(1.0f);
         m.roughness = 0;
         if (n.has("ior")) m.ior = n["ior"].positive();
         parseRoughness(n, m);
     } else if (type == "diffusetransmission") {
-        n.keys({"type", "reflectance", "transmittance"});
+        n.keys({"type", "reflectance", "transmittance"}, kMapKeys);
         m.type = MaterialType::DiffuseTransmission;
         const auto fraction = [&](const char* key) {
             const Vec3f c = n[key].colour();
@@ -306,12 +337,12 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
         n.keys({"type"});
         m.type = MaterialType::Interface;
     } else if (type == "conductor") {
-        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV"});
+        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV"}, kMapKeys);
         m.type = MaterialType::Conductor;
         parseConductorIndex(n, m);
         parseRoughness(n, m);
     } else if (type == "coateddiffuse") {
-        n.keys({"type", "reflectance", "coating"});
+        n.keys({"type", "reflectance", "coating"}, kMapKeys);
         m.type = MaterialType::CoatedDiffuse;
         m.albedo = Vec3f(0.5f);
         if (n.has("reflectance")) {
@@ -320,7 +351,7 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
         }
         if (n.has("coating")) m.coating = parseCoating(n["coating"]);
     } else if (type == "coatedconductor") {
-        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV", "coating"});
+        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV", "coating"}, kMapKeys);
         m.type = MaterialType::CoatedConductor;
         m.roughness = 0;
         parseConductorIndex(n, m);
@@ -331,6 +362,7 @@ Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
                        "' (diffuse, mirror, dielectric, conductor, thindielectric, "
                        "diffusetransmission, coateddiffuse, coatedconductor, mix, interface)");
     }
+    if (m.type != MaterialType::Mix && m.type != MaterialType::Interface) parseMaps(n, m, b);
     return m;
 }
 
@@ -777,6 +809,9 @@ std::string sceneToJson(const SceneDescription& s) {
         }
         names.push_back(name);
         Json o;
+        if (m.normalMap >= 0 || m.displacementTexture >= 0)
+            throw InputError("cannot write material '" + m.name +
+                             "': bump and normal maps have no file to refer to");
         switch (m.type) {
             case MaterialType::Diffuse:
                 if (m.texture >= 0)

@@ -77,6 +77,13 @@ struct Material {
     bool remapRoughness = true;
     int amountTexture = -1;  // mix
     Coating coating{};       // CoatedDiffuse, CoatedConductor
+    // Bump and normal maps (render/bump_mapping.h), on every type but Mix and
+    // Interface: a float shading texture of heights along the shading normal,
+    // or an index into SceneDescription::textures holding tangent-space
+    // normals as linear RGB (2c − 1); -1: none. A normal map wins over a
+    // displacement, as in pbrt-v4.
+    int displacementTexture = -1;
+    int normalMap = -1;
 };
 
 // A triangle mesh. Normals and UVs are per vertex and optional (empty = flat

@@ -79,6 +79,12 @@ void validateMaterial(const Material& m, size_t textureCount, size_t materialCou
     if (m.texture < -1 || (m.texture >= 0 && size_t(m.texture) >= textureCount))
         fail(source,
              what + " refers to texture " + std::to_string(m.texture) + " which does not exist");
+    if (m.normalMap < -1 || (m.normalMap >= 0 && size_t(m.normalMap) >= textureCount))
+        fail(source, what + " refers to normal map " + std::to_string(m.normalMap) +
+                         " which does not exist");
+    if ((m.normalMap >= 0 || m.displacementTexture >= 0) &&
+        (m.type == MaterialType::Mix || m.type == MaterialType::Interface))
+        fail(source, what + ": a mix or an interface has no bump or normal map");
     if (m.type == MaterialType::Dielectric && !(std::isfinite(m.ior) && m.ior > 0))
         fail(source, what + " has an invalid index of refraction");
     if (m.type == MaterialType::ThinDielectric && !(std::isfinite(m.ior) && m.ior > 0))
@@ -125,7 +131,7 @@ void validateShadingTextures(const SceneDescription& scene, const std::string& s
     }
     for (const Material& m : scene.materials)
         for (int t : {m.albedoTexture, m.transmittanceTexture, m.roughnessTexture,
-                      m.roughnessVTexture, m.amountTexture})
+                      m.roughnessVTexture, m.amountTexture, m.displacementTexture})
             if (t < -1 || (t >= 0 && size_t(t) >= nodes.size()))
                 fail(source, "material '" + m.name + "' refers to shading texture " +
                                  std::to_string(t) + " which does not exist");

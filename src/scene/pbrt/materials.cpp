@@ -264,8 +264,6 @@ Material makeMaterial(ImportState& st, const std::string& type, const std::strin
     const ParamSet ps = given.withDefaults(st.gs.attributes["material"]);
     ps.ignore("type");  // MakeNamedMaterial's
     Material m = greyDiffuse(name.empty() ? type + "@" + std::to_string(where.line) : name);
-    for (const char* bump : {"displacement", "normalmap"})
-        if (ps.find(bump)) st.unsupported(where, std::string("material ") + bump, "no bump");
     if (type == "diffuse") {
         if (auto t = spectrumTextureParam(st, ps, "reflectance"))
             m.albedoTexture = *t;
@@ -300,6 +298,9 @@ Material makeMaterial(ImportState& st, const std::string& type, const std::strin
                        "diffuse grey");
         markAllUsed(ps);
     }
+    // Every material but mix and interface takes a bump or normal map (the
+    // others leave the parameters unused, an error as in pbrt-v4).
+    if (m.type != MaterialType::Mix && m.type != MaterialType::Interface) materialMaps(st, ps, m);
     st.checkUnused(ps, "Material \"" + type + "\"");
     return m;
 }

@@ -110,6 +110,8 @@ int namedMaterialRef(ImportState& st, const std::string& name, const SourceLocat
                      const std::string& user);
 void makeNamedMaterial(ImportState& st, const std::string& name, const std::string& type,
                        const ParamSet& params, const SourceLocation& where);
+// The material's "displacement" and "normalmap" (material_maps.cpp).
+void materialMaps(ImportState& st, const ParamSet& params, Material& m);
 // At the end of the file: every named material used is defined.
 void finishMaterials(ImportState& st);
 void areaLightSource(ImportState& st, const std::string& type, const ParamSet& params,
