@@ -192,21 +192,26 @@ void ViewSession::lookUpReference() {
     ReferenceTarget target;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        if (errors_ && (referenceSource_ == "file" || referenceTarget_ == targetLocked())) return;
+        if (currentReferenceFitsLocked()) return;
         scene = scene_, target = targetLocked();
     }
     std::optional<FoundReference> found =
         findCachedReference(ReferenceCache::standard(), *scene, target);
     if (!found) return;
     useReference(std::make_shared<const Image>(std::move(found->reference.image)), target, "cache",
-                 found->spp);
+                 found->spp, /*unlessOneFits=*/true);
+}
+
+bool ViewSession::currentReferenceFitsLocked() const {
+    return errors_ && (referenceSource_ == "file" || referenceTarget_ == targetLocked());
 }
 
 // Replaces the reference; the worker measures against it from its next pass.
 void ViewSession::useReference(std::shared_ptr<const Image> image, const ReferenceTarget& target,
-                               const std::string& source, int spp) {
+                               const std::string& source, int spp, bool unlessOneFits) {
     auto errors = std::make_shared<ErrorHistory>(std::move(image));  // prepares ꟻLIP: outside
     std::lock_guard<std::mutex> lock(mutex_);
+    if (unlessOneFits && currentReferenceFitsLocked()) return;
     errors_ = std::move(errors);
     referenceTarget_ = target, referenceSource_ = source, referenceSpp_ = spp;
     errorPoints_.clear();

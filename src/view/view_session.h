@@ -97,8 +97,11 @@ class ViewSession {
     void requestRestartLocked();
     ReferenceTarget targetLocked() const;
     void lookUpReference();
+    // unlessOneFits: a cache lookup's result, dropped if a reference for the
+    // settings arrived while the lookup ran (a page build finishing).
     void useReference(std::shared_ptr<const Image> image, const ReferenceTarget& target,
-                      const std::string& source, int spp);
+                      const std::string& source, int spp, bool unlessOneFits = false);
+    bool currentReferenceFitsLocked() const;
 
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
