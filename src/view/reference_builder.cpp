@@ -47,8 +47,10 @@ void ReferenceBuilder::run() {
     } catch (const std::exception& e) {
         error = e.what();
     }
-    finished_ = true;
+    // Finished only once the session holds the result: who waits for the
+    // build then sees the page's reference, not a cache lookup racing it.
     if (!control_.cancel) done_(image, error);
+    finished_ = true;
 }
 
 // As a study's runner makes it (study/runner_references.cpp): the ranges not

@@ -44,8 +44,9 @@ ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScen
         referenceSource_ = "file";
     }
     requestRestartLocked();  // generation 1; no other thread yet
-    worker_ = std::thread([this] { work(); });
+    // Before the first pass: a short render could otherwise finish unmeasured.
     if (!errors_) lookUpReference();
+    worker_ = std::thread([this] { work(); });
 }
 
 ViewSession::~ViewSession() {
