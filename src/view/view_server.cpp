@@ -29,6 +29,13 @@ void sendJson(httplib::Response& res, const json& body, int status = 200) {
     res.set_content(body.dump(), "application/json");
 }
 
+// 204: what was asked for exists once the next pass lands (just after a start
+// or restart). Not an error: a page polling at that moment logs nothing.
+void sendNothingYet(httplib::Response& res) {
+    res.status = 204;
+    res.set_header("Cache-Control", "no-store");
+}
+
 void sendError(httplib::Response& res, int status, const std::string& message) {
     sendJson(res, json{{"error", message}}, status);
 }
@@ -165,7 +172,7 @@ void ViewServer::addApiRoutes() {
     });
     http_->Get("/api/points", [this](const httplib::Request& req, httplib::Response& res) {
         const SessionStatus status = session_.status();
-        if (status.width == 0) return sendError(res, 404, "no image yet");
+        if (status.width == 0) return sendNothingYet(res);
         const PointsQuery query{param(req, "pixel", ""), param(req, "dims", "0,1"),
                                 param(req, "count", ""), param(req, "which", "a")};
         try {
@@ -193,9 +200,11 @@ void ViewServer::addImageRoutes() {
             return sendError(res, 400, "map " + map + " is drawn as png only");
         const Frame frame = session_.frame();
         const std::shared_ptr<const Image>& image = which == "a" ? frame.a : frame.b;
-        if (!image)
-            return sendError(res, 404,
-                             which == "b" && frame.a ? "no compare sampler" : "no image yet");
+        if (!image) {
+            if (which == "b" && session_.status().settings.compare.empty())
+                return sendError(res, 404, "no compare sampler");
+            return sendNothingYet(res);  // before the first pass (at equal time: B's)
+        }
         res.set_header("Cache-Control", "no-store");
         res.set_header("X-Pathlab-Spp", std::to_string(which == "a" ? frame.spp : frame.sppB));
         res.set_header("X-Pathlab-Generation", std::to_string(frame.generation));
@@ -214,7 +223,7 @@ void ViewServer::addImageRoutes() {
         const std::optional<int> x = intParam(req, "x"), y = intParam(req, "y");
         const Frame frame = session_.frame();
         if (!x || !y) return sendError(res, 400, "x and y must be integers");
-        if (!frame.a) return sendError(res, 404, "no image yet");
+        if (!frame.a) return sendNothingYet(res);
         if (*x < 0 || *y < 0 || *x >= frame.a->width || *y >= frame.a->height)
             return sendError(res, 400, "pixel outside the image");
         sendJson(res, json{{"x", *x},

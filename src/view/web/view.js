@@ -17,6 +17,7 @@ async function api(path, body) {
   const init = body === undefined ? {} :
     { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) };
   const res = await fetch(path, init);
+  if (res.status === 204) return null;  // nothing yet: the first pass has not landed
   const json = await res.json();
   if (!res.ok) throw new Error(json.error || res.statusText);
   return json;
@@ -76,7 +77,7 @@ function mapShown(s) { return s.reference ? $('map').value : 'image'; }
 
 async function fetchImage(which, map) {
   const res = await fetch(`/api/image?which=${which}&format=png&map=${map}&t=${Date.now()}`);
-  if (!res.ok) return null;
+  if (!res.ok || res.status === 204) return null;  // 204: no pass yet
   return createImageBitmap(await res.blob());
 }
 
@@ -233,7 +234,7 @@ async function showPixel(p) {
   const id = ++pixelRequest;
   try {
     const v = await api(`/api/pixel?x=${p.x}&y=${p.y}`);
-    if (id !== pixelRequest) return;
+    if (id !== pixelRequest || !v) return;
     const rgb = (c) => c ? c.map((x) => x.toPrecision(5)).join(' ') : '—';
     const s = state.status;
     const sppB = v.b && v.spp_b !== v.spp ? ` (${v.spp_b} spp)` : '';
@@ -265,8 +266,10 @@ async function refreshPoints(p) {
   points.busy = true;
   try {
     const r = await api(query);
-    points.key = key;
-    drawPoints(r);
+    if (r) {  // null before the first image
+      points.key = key;
+      drawPoints(r);
+    }
   } catch (e) {
     $('points_caption').textContent = e.message;
   } finally {
