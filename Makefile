@@ -54,7 +54,7 @@ scenes/pbrt/textured-bricks.png: scripts/make_texture_png.py
 	@/usr/bin/python3 scripts/make_texture_png.py $@
 
 # The height and normal maps of scenes/pbrt/bump-normal.pbrt, generated, not stored.
-scenes/pbrt/bump-normal-heights.png: scripts/make_bump_maps.py
+scenes/pbrt/bump-normal-heights.png: scripts/make_bump_maps.py scripts/make_texture_png.py
 	@/usr/bin/python3 scripts/make_bump_maps.py scenes/pbrt
 
 # The Python module alone, into $(BUILD)/python/pathlab (docs/python.md);

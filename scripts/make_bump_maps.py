@@ -13,26 +13,12 @@ usage: scripts/make_bump_maps.py [OUTDIR=scenes/pbrt]
 """
 import math
 import os
-import struct
 import sys
-import zlib
+
+from make_texture_png import png  # the same 8-bit RGB PNG writer
 
 SIZE = 64
 CELL, RADIUS = 16, 7.0
-
-
-def png(width, height, pixel):
-    rows = b"".join(
-        b"\x00" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height)
-    )
-
-    def chunk(kind, data):
-        body = kind + data
-        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
-
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) +
-            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
 
 
 def code(v):

@@ -16,6 +16,7 @@ namespace pathlab {
 namespace {
 
 using testing::drawPoints;
+using testing::l2StarDiscrepancy;
 
 constexpr Vec2i kResolution{64, 64};
 
@@ -35,17 +36,6 @@ constexpr Vec2i kResolution{64, 64};
         }
     }
     return ::testing::AssertionSuccess();
-}
-
-// Warnock 1972's closed form of the L2-star discrepancy of a 2D point set.
-double l2StarDiscrepancy(const std::vector<Vec2f>& pts) {
-    const double n = double(pts.size());
-    double a = 0, b = 0;
-    for (const Vec2f& p : pts) a += (1 - double(p.x) * p.x) * (1 - double(p.y) * p.y);
-    for (const Vec2f& p : pts)
-        for (const Vec2f& q : pts)
-            b += (1 - std::max<double>(p.x, q.x)) * (1 - std::max<double>(p.y, q.y));
-    return std::sqrt(std::max(0.0, 1.0 / 9 - a / (2 * n) + b / (n * n)));
 }
 
 TEST(CascadedSobol, DrawsEqualTheDefinitionInAnyOrder) {

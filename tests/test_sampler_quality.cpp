@@ -15,23 +15,12 @@ namespace {
 
 using testing::allSamplerNames;
 using testing::drawPoints;
+using testing::l2StarDiscrepancy;
 
 // The pair the renderer uses for the first BSDF direction (bounceBase(0) + 4),
 // at an interior pixel of a 64 × 64 image: what a path actually receives.
 constexpr int kDimX = 6, kDimY = 7;
 constexpr Vec2i kPixel{21, 37}, kResolution{64, 64};
-
-// Warnock 1972: T*² = 1/9 − (1/2N) Σ_i Π_k (1 − x_ik²)
-//                       + (1/N²) Σ_i Σ_j Π_k (1 − max(x_ik, x_jk)).
-double l2StarDiscrepancy(const std::vector<Vec2f>& pts) {
-    const double n = double(pts.size());
-    double a = 0, b = 0;
-    for (const Vec2f& p : pts) a += (1 - double(p.x) * p.x) * (1 - double(p.y) * p.y);
-    for (const Vec2f& p : pts)
-        for (const Vec2f& q : pts)
-            b += (1 - std::max<double>(p.x, q.x)) * (1 - std::max<double>(p.y, q.y));
-    return std::sqrt(std::max(0.0, 1.0 / 9 - a / (2 * n) + b / (n * n)));
-}
 
 TEST(SamplerQuality, WarnockFormulaMatchesKnownValues) {
     // One point at the origin: T*² = 1/9 − 1/2 + 1 = 11/18.
