@@ -4,9 +4,11 @@
 // uses the ranges an earlier run saved, and removes them once merged.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
+#include "core/error.h"
 #include "scene/loader.h"
 #include "study/reference_ranges.h"
 #include "study/runner.h"
@@ -36,6 +38,33 @@ TEST(ReferenceRanges, CoverTheSamplesInWholeBatches) {
         }
     }
     EXPECT_EQ(referenceRanges(4096).size(), 16u);  // one per rank of 16
+}
+
+// `[reference] ranges = N`: N ranges of ⌈spp / N⌉ samples, batches or not,
+// fewer only where the last ones would hold none.
+TEST(ReferenceRanges, AskedForCountSplitsIntoThatManyEqualRanges) {
+    struct Case {
+        int spp, count;
+        std::vector<int> sizes;
+    };
+    for (const Case& c :
+         {Case{4096, 64, std::vector<int>(64, 64)}, Case{4096, 256, std::vector<int>(256, 16)},
+          Case{1000, 3, {334, 334, 332}}, Case{10, 4, {3, 3, 3, 1}},
+          Case{10, 6, {2, 2, 2, 2, 2}},  // a sixth would be empty
+          Case{7, 7, std::vector<int>(7, 1)}, Case{256, 1, {256}}}) {
+        const std::vector<SampleRange> ranges = referenceRanges(c.spp, c.count);
+        std::vector<int> sizes;
+        int next = 0;
+        for (const SampleRange& r : ranges) {
+            EXPECT_EQ(r.first, next) << c.spp << " in " << c.count;
+            next = r.end;
+            sizes.push_back(r.count());
+        }
+        EXPECT_EQ(next, c.spp);
+        EXPECT_EQ(sizes, c.sizes) << c.spp << " in " << c.count;
+    }
+    // Asking for the automatic count's own split changes nothing but the key.
+    EXPECT_EQ(referenceRanges(4096, 16).size(), referenceRanges(4096).size());
 }
 
 RangeSums someSums(int index, int first, int spp, size_t pixels) {
@@ -111,6 +140,38 @@ TEST(ReferenceRanges, StudyUsesSavedRangesAndRemovesThem) {
         ResultsStore((dir / "saved/study/results.sqlite").string(), true).references();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_GE(rows[0].seconds, 1000);
+    fs::remove_all(dir);
+}
+
+// A spec's range count: its own cache key and range files, the same samples
+// added in another grouping (equal to rounding), and a study resumed with
+// another count is refused as a changed spec.
+TEST(ReferenceRanges, SpecRangeCountIsInTheKeyAndTheFilesNotInTheSamples) {
+    const auto dir = testing::scratchDirectory("study-range-count");
+    const StudySpec automatic =
+        loadStudySpec(testing::writeSpec(dir, "auto.toml", testing::tinySpec()).string());
+    const StudySpec seven = loadStudySpec(
+        testing::writeSpec(dir, "seven.toml", testing::tinySpec() + "ranges = 7\n").string());
+    EXPECT_EQ(automatic.reference.ranges, 0);
+    ASSERT_EQ(seven.reference.ranges, 7);
+    const SceneDescription scene = loadScene("cornell-box");
+    const std::string key = referenceCacheKey(scene, seven.scenes.at(0), seven);
+    EXPECT_NE(key, referenceCacheKey(scene, automatic.scenes.at(0), automatic));
+    const ReferenceRangeFiles files = referenceRangeFiles(ReferenceCache::standard(), key, seven);
+    ASSERT_EQ(files.ranges().size(), 7u);  // 256 = 6 × 37 + 34
+    EXPECT_EQ(files.ranges().back().count(), 34);
+    EXPECT_NE(files.path(6).filename().string().find(".range-6-of-7.sums"), std::string::npos);
+
+    testing::usePrivateCache(dir / "cache");
+    runStudy(automatic, {dir / "auto", false, 2});
+    runStudy(seven, {dir / "seven", false, 2});
+    const Image a = studyReference(dir / "auto"), b = studyReference(dir / "seven");
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    // The same samples grouped otherwise: double sums that may differ in their
+    // last bits, which the float image rarely keeps.
+    for (size_t i = 0; i < a.rgb.size(); ++i)
+        ASSERT_NEAR(a.rgb[i], b.rgb[i], 1e-5f * (1 + std::abs(a.rgb[i]))) << i;
+    EXPECT_THROW(runStudy(seven, {dir / "auto", true, 2}), InputError);
     fs::remove_all(dir);
 }
 

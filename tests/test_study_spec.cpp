@@ -60,6 +60,10 @@ TEST(StudySpec, CanonicalTomlRoundTrips) {
     changed = presetSpec("quick");
     changed.rouletteDepth = 4;
     EXPECT_EQ(firstSpecDifference(presetSpec("quick"), changed), "roulette_depth");
+    changed = presetSpec("quick");
+    changed.reference.ranges = 32;
+    EXPECT_EQ(firstSpecDifference(presetSpec("quick"), changed), "reference.ranges");
+    EXPECT_EQ(parse(studySpecToToml(changed)).reference.ranges, 32);
 }
 
 // Names may hold any character TOML can escape; the canonical TOML must read
@@ -93,6 +97,10 @@ TEST(StudySpec, ErrorsNameTheKeyAndTheLine) {
          "spec.toml:5: key 'reference.spp' must be an integer"},
         {kValid + "[reference]\nsampler = \"x\"\n", "spec.toml:5: key 'reference.sampler'"},
         {kValid + "[reference]\nspp = 64\ncolour = 1\n", "spec.toml:6: key 'reference.colour'"},
+        {kValid + "[reference]\nspp = 64\nranges = 0\n",
+         "spec.toml:6: key 'reference.ranges' must be between 1 and 4096"},
+        {kValid + "[reference]\nspp = 64\nranges = 65\n",
+         "spec.toml:6: key 'reference.ranges' must be at most reference.spp (64)"},
         {kValid + "resolution = [64]\n", "spec.toml:4: key 'resolution' must be [width, height]"},
         {kValid + "time_budget_seconds = -1\n", "spec.toml:4: key 'time_budget_seconds'"},
         {kValid + "metrics = [\"mse\", \"ssim\"]\n", "spec.toml:4: key 'metrics[1]'"},

@@ -128,6 +128,8 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     // Only when set, so that the keys of studies without it stay as they were.
     if (!spec.lightSampler.empty()) h.text("light_sampler " + spec.lightSampler);
     if (spec.spectral) h.text("spectral");
+    // The ranges' sums are added in range order: their number is in the bits.
+    if (spec.reference.ranges) h.text("reference ranges " + std::to_string(spec.reference.ranges));
     return h.hex();
 }
 

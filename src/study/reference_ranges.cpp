@@ -71,12 +71,15 @@ std::string readWholeFile(const fs::path& path) {
 
 }  // namespace
 
-std::vector<SampleRange> referenceRanges(int spp) {
-    // The fewest ranges of whole batches that keeps them at most
-    // kMaxReferenceRanges: ⌈spp / max⌉ rounded up to a batch.
-    const int perRange = std::max(1, (spp + kMaxReferenceRanges - 1) / kMaxReferenceRanges);
-    const int size =
-        (perRange + kMinReferenceRangeSpp - 1) / kMinReferenceRangeSpp * kMinReferenceRangeSpp;
+std::vector<SampleRange> referenceRanges(int spp, int count) {
+    // Automatic: the fewest ranges of whole batches that keeps them at most
+    // kMaxReferenceRanges, ⌈spp / max⌉ rounded up to a batch. Asked for:
+    // ⌈spp / count⌉ each, batches or not.
+    const int ranges = count > 0 ? count : kMaxReferenceRanges;
+    const int perRange = std::max(1, (spp + ranges - 1) / ranges);
+    const int size = count > 0 ? perRange
+                               : (perRange + kMinReferenceRangeSpp - 1) / kMinReferenceRangeSpp *
+                                     kMinReferenceRangeSpp;
     std::vector<SampleRange> out;
     for (int first = 0; first < spp; first += size)
         out.push_back({first, std::min(spp, first + size)});
@@ -116,10 +119,11 @@ RangeSums decodeRangeSums(std::string_view bytes, const std::string& cacheKey) {
     return r;
 }
 
-ReferenceRangeFiles::ReferenceRangeFiles(fs::path directory, std::string cacheKey, int spp)
+ReferenceRangeFiles::ReferenceRangeFiles(fs::path directory, std::string cacheKey, int spp,
+                                         int count)
     : directory_(std::move(directory)),
       cacheKey_(std::move(cacheKey)),
-      ranges_(referenceRanges(spp)) {}
+      ranges_(referenceRanges(spp, count)) {}
 
 fs::path ReferenceRangeFiles::path(int index) const {
     return directory_ / (cacheKey_ + ".range-" + std::to_string(index) + "-of-" +
@@ -159,7 +163,8 @@ void ReferenceRangeFiles::removeAll() const {
 
 ReferenceRangeFiles referenceRangeFiles(const ReferenceCache& cache, const std::string& cacheKey,
                                         const StudySpec& spec) {
-    return ReferenceRangeFiles(cache.directory(), cacheKey, spec.reference.spp);
+    return ReferenceRangeFiles(cache.directory(), cacheKey, spec.reference.spp,
+                               spec.reference.ranges);
 }
 
 // The reference's settings: its sampler is made for all its spp, whichever
@@ -171,7 +176,7 @@ RangeSums renderReferenceRange(const RenderScene& scene, const StudySpec& spec, 
     s.sampler = spec.reference.sampler;
     s.samplesPerPixel = spec.reference.spp;
     s.seed = spec.reference.seed;
-    s.sampleRange = referenceRanges(spec.reference.spp).at(size_t(index));
+    s.sampleRange = referenceRanges(spec.reference.spp, spec.reference.ranges).at(size_t(index));
     RangeSums r;
     r.index = index;
     s.resume = &r.sums;

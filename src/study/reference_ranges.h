@@ -31,8 +31,11 @@ inline constexpr int kMinReferenceRangeSpp = 64;
 inline constexpr int kMaxReferenceRanges = 16;
 
 // The ranges of a reference of `spp` samples per pixel: consecutive, from 0
-// to spp, equal but for a shorter last one.
-std::vector<SampleRange> referenceRanges(int spp);
+// to spp, equal but for a shorter last one. `count` = 0 chooses them as
+// above; a spec's `[reference] ranges` = N (≤ spp) asks for N ranges of
+// ⌈spp / N⌉ samples (fewer when the last ones would be empty), for clusters
+// with more ranks than 16 ranges can keep busy (docs/cluster.md).
+std::vector<SampleRange> referenceRanges(int spp, int count = 0);
 
 // One finished range: its index in referenceRanges, its sums, and the
 // seconds its render took.
@@ -52,7 +55,8 @@ RangeSums decodeRangeSums(std::string_view bytes, const std::string& cacheKey);
 // entries: DIRECTORY/KEY.range-I-of-N.sums, each written atomically.
 class ReferenceRangeFiles {
   public:
-    ReferenceRangeFiles(std::filesystem::path directory, std::string cacheKey, int spp);
+    ReferenceRangeFiles(std::filesystem::path directory, std::string cacheKey, int spp,
+                        int count = 0);
 
     const std::vector<SampleRange>& ranges() const { return ranges_; }
     const std::string& cacheKey() const { return cacheKey_; }

@@ -24,7 +24,8 @@ ReferenceRangeFiles rangeFilesOf(const SceneJob& job, const StudySpec& spec) {
 }  // namespace
 
 std::string rangeLabel(const SceneJob& job, const StudySpec& spec, int index) {
-    const std::vector<SampleRange> ranges = referenceRanges(spec.reference.spp);
+    const std::vector<SampleRange> ranges =
+        referenceRanges(spec.reference.spp, spec.reference.ranges);
     const SampleRange& r = ranges.at(size_t(index));
     return job.scene.name + " reference samples " + std::to_string(r.first) + "…" +
            std::to_string(r.end - 1) + " (range " + std::to_string(index + 1) + " of " +

@@ -203,7 +203,7 @@ Vec2i SpecReader::resolution(const toml::node& n) const {
 ReferenceSpec SpecReader::reference(const toml::node& n) const {
     if (!n.is_table()) failType(n, "reference", "a table");
     const toml::table& t = *n.as_table();
-    onlyKeys(t, "reference.", {"spp", "sampler", "seed"});
+    onlyKeys(t, "reference.", {"spp", "sampler", "seed", "ranges"});
     ReferenceSpec r;
     if (const toml::node* v = t.get("spp")) r.spp = int(integer(*v, "reference.spp", 1, kMaxSpp));
     if (const toml::node* v = t.get("sampler")) {
@@ -215,6 +215,13 @@ ReferenceSpec SpecReader::reference(const toml::node& n) const {
     }
     if (const toml::node* v = t.get("seed"))
         r.seed = uint64_t(integer(*v, "reference.seed", 0, INT64_MAX));
+    if (const toml::node* v = t.get("ranges")) {
+        r.ranges = int(integer(*v, "reference.ranges", 1, kMaxReferenceRangeCount));
+        if (r.ranges > r.spp)
+            fail(v->source(), "reference.ranges",
+                 "must be at most reference.spp (" + std::to_string(r.spp) +
+                     "): every range holds samples");
+    }
     return r;
 }
 
@@ -405,6 +412,7 @@ std::string studySpecToToml(const StudySpec& s) {
         << "spp = " << s.reference.spp << "\n"
         << "sampler = " << quoted(s.reference.sampler) << "\n"
         << "seed = " << s.reference.seed << "\n";
+    if (s.reference.ranges) out << "ranges = " << s.reference.ranges << "\n";
     if (std::any_of(s.scenes.begin(), s.scenes.end(),
                     [](const StudyScene& scene) { return !scene.difficulty.empty(); })) {
         out << "\n[difficulty]\n";
@@ -445,6 +453,7 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.reference.spp != b.reference.spp) return "reference.spp";
     if (a.reference.sampler != b.reference.sampler) return "reference.sampler";
     if (a.reference.seed != b.reference.seed) return "reference.seed";
+    if (a.reference.ranges != b.reference.ranges) return "reference.ranges";
     // [difficulty] may differ: it only labels scenes for the report. So may
     // [[external]] tables: a resumed study measures the renders they name now
     // beside its own cells, which they do not change.

@@ -19,10 +19,16 @@ namespace pathlab {
 // look closer to the reference than it is.
 inline constexpr uint64_t kDefaultReferenceSeed = 2718281828;
 
+// The most sample ranges a spec may ask a reference to be split into.
+inline constexpr int kMaxReferenceRangeCount = 4096;
+
 struct ReferenceSpec {
     int spp = 4096;
     std::string sampler = "independent";
     uint64_t seed = kDefaultReferenceSeed;
+    // The number of sample ranges it is rendered in (reference_ranges.h);
+    // 0 = automatic: at most 16 ranges of at least 64 samples.
+    int ranges = 0;
 };
 
 // One scene of a study: `name` names its rows and folders (the built-in name,
