@@ -235,9 +235,10 @@ std::map<std::pair<int, int>, int> drawnDimensions(const Camera& camera, bool ba
                           dirs + p0, weights + p0);
     for (int k = 0; k < count; ++k) found[k] = scene.intersect(origins[k], dirs[k], &si[k]);
     PathCounters counters;
+    BatchPaths paths;
     if (batch)
         estimateRadianceBatch(scene, dirs, found, si, count, sampler, pixel, 0, settings, counters,
-                              L);
+                              paths, L);
     else
         for (int k = 0; k < count; ++k)
             L[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler, pixel, k,

@@ -362,7 +362,9 @@ inline void setBatchLightSample(DiffuseBatchInput& in, int k,
 // The state of the paths estimateRadianceBatch traces together. Path k's
 // vertex at the current depth is in si[k] (found[k]: the ray that looked for
 // it hit); specularBounce[k]: the bounce to it was specular, so its emission
-// is unweighted, as the camera ray's.
+// is unweighted, as the camera ray's. The caller keeps one for many calls
+// (the renderer: one per tile): a call resets the paths it traces, and
+// zeroing ≈ 5 KB for each pixel of a 1-spp pass cost as much as tracing it.
 struct BatchPaths {
     Vec3f beta[kBatchSamples], dir[kBatchSamples], prevPoint[kBatchSamples],
         prevNormal[kBatchSamples];
@@ -527,13 +529,14 @@ template <Sampler S>
 void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* found,
                            SurfaceInteraction* si, int count, S& sampler, Vec2i pixel,
                            int firstIndex, const IntegratorSettings& settings,
-                           PathCounters& counters, Vec3f* L) {
+                           PathCounters& counters, BatchPaths& paths, Vec3f* L) {
     static_assert(kPacketWidth == kBatchLanes, "a packet's rays are one batch's lanes");
     const LightSet& lights = scene.lights();
-    BatchPaths paths;
-    for (int k = 0; k < count; ++k)
-        L[k] = Vec3f(0.0f), paths.beta[k] = Vec3f(1.0f), paths.dir[k] = dirs[k],
-        paths.alive[k] = true;
+    for (int k = 0; k < count; ++k) {
+        L[k] = Vec3f(0.0f), paths.beta[k] = Vec3f(1.0f), paths.dir[k] = dirs[k];
+        paths.prevPoint[k] = paths.prevNormal[k] = Vec3f(0.0f);
+        paths.prevBsdfPdf[k] = 0, paths.alive[k] = true, paths.specularBounce[k] = false;
+    }
     for (int depth = 0;; ++depth) {
         int lane[kBatchSamples], live = 0;
         for (int k = 0; k < count; ++k) {
