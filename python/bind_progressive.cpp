@@ -75,14 +75,15 @@ void bindProgressive(py::module_& m) {
         .def(py::init([](Scene scene, std::optional<std::string> sampler, int64_t spp,
                          std::optional<std::string> seed, std::optional<std::string> size,
                          std::optional<int64_t> maxDepth, bool russianRoulette,
-                         int64_t rouletteDepth, int64_t threads) {
+                         int64_t rouletteDepth, int64_t threads, bool spectral) {
                  const RenderKeywords k{sampler,  seed,          size,    spp,
-                                        maxDepth, rouletteDepth, threads, russianRoulette};
+                                        maxDepth, rouletteDepth, threads, russianRoulette,
+                                        spectral};
                  return std::make_unique<Progressive>(std::move(scene), k);
              }),
              py::arg("scene"), py::arg("sampler"), py::arg("spp"), py::arg("seed"), py::arg("size"),
              py::arg("max_depth"), py::arg("russian_roulette"), py::arg("roulette_depth"),
-             py::arg("threads"))
+             py::arg("threads"), py::arg("spectral"))
         .def("advance", &Progressive::advance, py::arg("spp"), py::arg("progress"),
              py::arg("interval"), py::arg("with_stats"))
         .def_property_readonly("spp", &Progressive::spp)

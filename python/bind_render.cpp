@@ -15,6 +15,7 @@
 #include "render/render_options.h"
 #include "render/renderer.h"
 #include "render_binding.h"
+#include "scene/light_selection.h"
 #include "scene/loader.h"
 
 namespace pathlab::python {
@@ -34,6 +35,7 @@ RenderSettings settingsFor(const Scene& scene, const RenderKeywords& k) {
     v.russianRoulette = k.russianRoulette;
     // Narrowed so that validateRenderSettings names the value given.
     s.threads = int(std::clamp<int64_t>(k.threads, INT_MIN, INT_MAX));
+    s.spectral = k.spectral;
     applySceneDefaults(scene.defaults, v, s);
     settleRenderSettings(v, names, s);
     return s;
@@ -93,18 +95,23 @@ py::dict statsDict(const RenderStats& stats, const RenderSettings& s) {
     d["spp"] = s.samplesPerPixel;
     d["seed"] = s.seed;
     d["max_depth"] = s.maxDepth;
+    d["spectral"] = s.spectral;
     return d;
 }
 
 namespace {
 
-Scene loadPythonScene(const std::string& source, bool lenient, bool solidAngleLights) {
+Scene loadPythonScene(const std::string& source, bool lenient, bool solidAngleLights,
+                      const std::string& lightSampler) {
+    if (!lightSampler.empty()) parseLightSelection(lightSampler, "light_sampler");
     py::gil_scoped_release release;
     SceneDescription desc = loadScene(source, {lenient});
     const RenderDefaults defaults = desc.defaults;
+    // As `pathlab render --light-sampler`: chosen when the render scene is built.
+    if (!lightSampler.empty()) desc.defaults.lightSampler = lightSampler;
     auto scene = std::make_shared<const RenderScene>(
         std::move(desc), solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
-    return {source, std::move(scene), defaults};
+    return {source, std::move(scene), defaults, lenient, solidAngleLights, lightSampler};
 }
 
 py::object renderScene(const Scene& scene, const RenderKeywords& keywords,
@@ -128,6 +135,14 @@ py::object renderScene(const Scene& scene, const RenderKeywords& keywords,
 void bindRender(py::module_& m) {
     py::class_<Scene>(m, "Scene")
         .def_property_readonly("source", [](const Scene& s) { return s.source; })
+        .def_property_readonly("lenient", [](const Scene& s) { return s.lenient; })
+        .def_property_readonly("solid_angle_lights",
+                               [](const Scene& s) { return s.solidAngleLights; })
+        .def_property_readonly("light_sampler",
+                               [](const Scene& s) {
+                                   return s.lightSampler.empty() ? py::object(py::none())
+                                                                 : py::str(s.lightSampler);
+                               })
         .def_property_readonly("width",
                                [](const Scene& s) { return s.scene->description().resolution.x; })
         .def_property_readonly("height",
@@ -150,7 +165,7 @@ void bindRender(py::module_& m) {
                    std::to_string(r.y) + ")";
         });
     m.def("load_scene", &loadPythonScene, py::arg("source"), py::arg("lenient") = false,
-          py::arg("solid_angle_lights") = false);
+          py::arg("solid_angle_lights") = false, py::arg("light_sampler") = "");
     m.def("builtin_scenes", &builtinSceneNames);
     m.def(
         "render",
@@ -158,14 +173,17 @@ void bindRender(py::module_& m) {
         [](Scene scene, std::optional<std::string> sampler, std::optional<int64_t> spp,
            std::optional<std::string> seed, std::optional<std::string> size,
            std::optional<int64_t> maxDepth, bool russianRoulette, int64_t rouletteDepth,
-           int64_t threads, const py::object& progress, double interval, bool withStats) {
+           int64_t threads, bool spectral, const py::object& progress, double interval,
+           bool withStats) {
             const RenderKeywords k{sampler,  seed,          size,    spp,
-                                   maxDepth, rouletteDepth, threads, russianRoulette};
+                                   maxDepth, rouletteDepth, threads, russianRoulette,
+                                   spectral};
             return renderScene(scene, k, progress, interval, withStats);
         },
         py::arg("scene"), py::arg("sampler"), py::arg("spp"), py::arg("seed"), py::arg("size"),
         py::arg("max_depth"), py::arg("russian_roulette"), py::arg("roulette_depth"),
-        py::arg("threads"), py::arg("progress"), py::arg("interval"), py::arg("with_stats"));
+        py::arg("threads"), py::arg("spectral"), py::arg("progress"), py::arg("interval"),
+        py::arg("with_stats"));
 }
 
 }  // namespace pathlab::python

@@ -19,6 +19,9 @@ struct Scene {
     std::string source;
     std::shared_ptr<const RenderScene> scene;
     RenderDefaults defaults;
+    // How it was loaded, so that render(light_sampler=…) can load it again.
+    bool lenient = false, solidAngleLights = false;
+    std::string lightSampler;  // as asked; "": the file's own choice
 };
 
 // The Python keywords as `pathlab render` reads its flags; None is "not given".
@@ -27,6 +30,7 @@ struct RenderKeywords {
     std::optional<int64_t> spp, maxDepth;
     int64_t rouletteDepth = kDefaultRouletteDepth, threads = 0;
     bool russianRoulette = true;
+    bool spectral = false;
 };
 
 // The checked settings (InputError naming the keyword otherwise).

@@ -78,6 +78,31 @@ TEST_F(ViewReference, AStudysCachedReferenceIsFoundForItsSettingsOnly) {
     EXPECT_FALSE(view::findCachedReference(ReferenceCache::standard(), *scene, other));
 }
 
+// A study's light sampler is part of its reference: the view finds it with
+// the same light sampler only (and the scene loaded choosing by it).
+TEST_F(ViewReference, AStudysLightSamplerIsPartOfItsReference) {
+    std::string text = studySpec(16);
+    text.insert(text.find("[reference]"), "light_sampler = \"uniform\"\n");
+    const auto spec = testing::writeSpec(dir, "spec.toml", text);
+    const auto study =
+        testing::runPathlab("study " + spec.string() + " -o " + (dir / "study").string(), dir);
+    ASSERT_EQ(study.exitCode, 0) << study.err;
+    const view::ViewSettings v = smallViewSettings("independent");
+    const auto find = [&](const std::string& lightSampler) {
+        const auto scene = view::loadViewScene(v.scene, lightSampler);
+        view::ReferenceTarget target{v.scene, v.size, v.maxDepth, v.russianRoulette};
+        target.lightSampler = lightSampler;
+        return view::findCachedReference(ReferenceCache::standard(), *scene, target);
+    };
+    const auto found = find("uniform");
+    ASSERT_TRUE(found);
+    EXPECT_EQ(found->spp, 16);
+    EXPECT_TRUE(sameBytes(found->reference.image,
+                          readImage((dir / "study/references/cornell-box.exr").string())));
+    EXPECT_FALSE(find(""));
+    EXPECT_FALSE(find("bvh"));
+}
+
 TEST_F(ViewReference, APageBuiltReferenceIsTheRenderAndTheStudysCacheEntry) {
     view::ViewSettings v = smallViewSettings("independent");
     v.maxSpp = 4;

@@ -63,6 +63,44 @@ TEST(ViewSession, RenderSettingsRestartDisplaySettingsDoNot) {
     EXPECT_TRUE(sameBytes(*after.a, renderedLike(*scene, v, "halton", after.spp)));
 }
 
+// The light sampler and spectral mode are render settings: each restarts,
+// and the frames are `pathlab render --light-sampler … [--spectral]` of the
+// scene at that spp. On 200 lights of unequal power the three strategies
+// make three different images, so a view that ignored the setting fails.
+TEST(ViewSession, LightSamplerAndSpectralAreRenderSettings) {
+    view::ViewSettings v = smallViewSettings("sobol-owen");
+    v.scene = std::string(PATHLAB_SOURCE_DIR) + "/scenes/pbrt/many-lights.pbrt";
+    v.lightSampler = "uniform";
+    view::ViewSession session(v, view::loadViewScene(v.scene, v.lightSampler), 2);
+    const auto renderedWith = [&](const view::ViewSettings& like, int spp) {
+        const auto scene = view::loadViewScene(like.scene, like.lightSampler);
+        RenderSettings s;
+        s.sampler = like.sampler, s.samplesPerPixel = spp, s.seed = like.seed;
+        s.resolution = like.size, s.maxDepth = like.maxDepth, s.spectral = like.spectral;
+        return render(*scene, s).image;
+    };
+    view::Frame frame = session.waitForSpp(2);
+    EXPECT_TRUE(sameBytes(*frame.a, renderedWith(v, frame.spp)));
+    uint64_t generation = frame.generation;
+    for (const nlohmann::json& change :
+         {nlohmann::json{{"light_sampler", "bvh"}}, nlohmann::json{{"spectral", true}},
+          nlohmann::json{{"light_sampler", nullptr}}}) {  // back to the scene's: power
+        const view::ViewSettings before = v;
+        const view::SessionStatus s = session.update(change);
+        EXPECT_EQ(s.generation, generation + 1) << change.dump();
+        v = s.settings;
+        frame = session.waitForSpp(2);
+        generation = frame.generation;
+        EXPECT_TRUE(sameBytes(*frame.a, renderedWith(v, frame.spp))) << change.dump();
+        EXPECT_FALSE(sameBytes(*frame.a, renderedWith(before, frame.spp))) << change.dump();
+    }
+    EXPECT_EQ(v.lightSampler, "");
+    EXPECT_TRUE(v.spectral);
+    EXPECT_THROW(session.update({{"light_sampler", "nearest"}}), InputError);
+    EXPECT_THROW(session.update({{"spectral", "yes"}}), InputError);
+    EXPECT_EQ(session.status().generation, generation);
+}
+
 TEST(ViewSession, BadSettingsChangeNothing) {
     const view::ViewSettings v = smallViewSettings("independent");
     view::ViewSession session(v, view::loadViewScene(v.scene), 2);

@@ -36,7 +36,7 @@ __all__ = [
 RELMSE_EPSILON = _pathlab.RELMSE_EPSILON
 
 
-def load_scene(source, lenient=False, solid_angle_lights=False):
+def load_scene(source, lenient=False, solid_angle_lights=False, light_sampler=None):
     """Load a scene once, to render it any number of times (from any thread).
 
     source: a built-in name ("cornell-box", "wolf") or a scene file: .json
@@ -45,12 +45,19 @@ def load_scene(source, lenient=False, solid_angle_lights=False):
         instead of refusing the file (``pathlab render --lenient``).
     solid_angle_lights: sample rectangular lights by solid angle instead of by
         area (``--solid-angle-lights``).
+    light_sampler: how next-event estimation picks a light, "uniform",
+        "power" or "bvh" (``--light-sampler``); None keeps the file's choice
+        (else power). It is built into the loaded scene (its light tree).
 
-    Returns a pathlab.Scene (attributes: source, width, height, defaults — the
-    file's own sampler, spp, seed and max depth, None where it has none).
-    Raises ValueError for an unknown name or a bad file.
+    Returns a pathlab.Scene (attributes: source, width, height, lenient,
+    solid_angle_lights, light_sampler, defaults — the file's own sampler, spp,
+    seed and max depth, None where it has none).
+    Raises ValueError for an unknown name, a bad file or light sampler.
     """
-    return _pathlab.load_scene(_os.fspath(source), lenient, solid_angle_lights)
+    if light_sampler is not None and not isinstance(light_sampler, str):
+        raise ValueError("light_sampler must be uniform, power or bvh, got %r" % (light_sampler,))
+    return _pathlab.load_scene(_os.fspath(source), lenient, solid_angle_lights,
+                               light_sampler or "")
 
 
 def builtin_scenes():
@@ -58,11 +65,15 @@ def builtin_scenes():
     return _pathlab.builtin_scenes()
 
 
-def _scene(scene, lenient):
+def _scene(scene, lenient, light_sampler):
     if isinstance(scene, Scene):
-        return scene
+        if light_sampler is None or light_sampler == scene.light_sampler:
+            return scene
+        # The light sampler is part of the loaded scene: load it again, as it was.
+        return load_scene(scene.source, lenient=scene.lenient,
+                          solid_angle_lights=scene.solid_angle_lights, light_sampler=light_sampler)
     if isinstance(scene, (str, _os.PathLike)):
-        return load_scene(scene, lenient=lenient)
+        return load_scene(scene, lenient=lenient, light_sampler=light_sampler)
     raise ValueError("scene must be a scene name, a file path or a pathlab.Scene, got %r"
                      % type(scene).__name__)
 
@@ -104,7 +115,8 @@ def _int_or_none(value, name):
 
 
 def _render_arguments(scene, sampler, spp, seed, size, max_depth, threads, russian_roulette,
-                      roulette_depth, lenient, progress, progress_interval):
+                      roulette_depth, lenient, progress, progress_interval, light_sampler,
+                      spectral):
     """render()'s keywords checked and converted: the scene and settings
     arguments of _pathlab.render, then the progress callback and interval."""
     threads = _int_or_none(threads, "threads")
@@ -118,16 +130,18 @@ def _render_arguments(scene, sampler, spp, seed, size, max_depth, threads, russi
     if sampler is not None and not isinstance(sampler, str):
         raise ValueError("sampler must be a sampler name (see pathlab.samplers()), got %r"
                          % (sampler,))
-    settings = (_scene(scene, lenient), sampler, _int_or_none(spp, "spp"), _text(seed, "seed"),
-                _text(size, "size"), _int_or_none(max_depth, "max_depth"),
+    if not isinstance(spectral, bool):
+        raise ValueError("spectral must be True or False, got %r" % (spectral,))
+    settings = (_scene(scene, lenient, light_sampler), sampler, _int_or_none(spp, "spp"),
+                _text(seed, "seed"), _text(size, "size"), _int_or_none(max_depth, "max_depth"),
                 bool(russian_roulette), 2 if roulette_depth is None else roulette_depth,
-                threads or 0)
+                threads or 0, spectral)
     return settings, progress, interval
 
 
 def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, threads=None,
            russian_roulette=True, roulette_depth=None, lenient=False, progress=None,
-           progress_interval=0.1, return_stats=False):
+           progress_interval=0.1, return_stats=False, light_sampler=None, spectral=False):
     """Render one image; returns a float32 array (height, width, 3), linear RGB.
 
     scene: a pathlab.Scene from load_scene (reused: no reload), a built-in
@@ -141,6 +155,11 @@ def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, 
         bit for bit at any thread count.
     russian_roulette, roulette_depth: --no-russian-roulette and
         --roulette-depth (default 2 bounces before roulette may end a path).
+    light_sampler: "uniform", "power" or "bvh", as --light-sampler; None
+        keeps the scene's (a loaded Scene of another choice is loaded again:
+        load_scene(..., light_sampler=...) once for repeated renders).
+    spectral: four sampled wavelengths per path instead of RGB, as
+        --spectral (docs/spectral.md); the image is linear sRGB either way.
     progress: called as progress(done_tiles, total_tiles) every
         progress_interval seconds from the calling thread; an exception it
         raises stops the render and propagates.
@@ -153,7 +172,7 @@ def render(scene, sampler=None, spp=None, seed=None, size=None, max_depth=None, 
     """
     settings, progress, interval = _render_arguments(
         scene, sampler, spp, seed, size, max_depth, threads, russian_roulette, roulette_depth,
-        lenient, progress, progress_interval)
+        lenient, progress, progress_interval, light_sampler, spectral)
     return _pathlab.render(*settings, progress, interval, bool(return_stats))
 
 
@@ -195,7 +214,7 @@ def render_progressive(scene, spp, step, **options):
 # render()'s keywords after scene, and their defaults.
 _RENDER_DEFAULTS = dict(sampler=None, spp=None, seed=None, size=None, max_depth=None,
                         threads=None, russian_roulette=True, roulette_depth=None, lenient=False,
-                        progress=None, progress_interval=0.1)
+                        progress=None, progress_interval=0.1, light_sampler=None, spectral=False)
 
 
 class _Progressive:

@@ -83,7 +83,8 @@ void runView(ViewOptions& o) {
                              std::to_string(reference->width) + "x" +
                              std::to_string(reference->height) + ", not the --size " + o.size);
     }
-    view::ViewSession session(s, view::loadViewScene(s.scene), o.threads, reference);
+    view::ViewSession session(s, view::loadViewScene(s.scene, s.lightSampler), o.threads,
+                              reference);
     view::ViewServer server(session);
     const int port = server.bind(o.host, o.port);
     std::printf(
@@ -117,6 +118,11 @@ void addViewCommand(CLI::App& app) {
     cmd->add_option("--max-depth", o->settings.maxDepth, "Maximum path depth")
         ->capture_default_str();
     cmd->add_flag("--no-russian-roulette", o->noRoulette, "Disable Russian roulette");
+    cmd->add_option("--light-sampler", o->settings.lightSampler,
+                    "How next-event estimation picks a light: uniform, power or bvh "
+                    "(default: the scene file's choice, else power)");
+    cmd->add_flag("--spectral", o->settings.spectral,
+                  "Carry four sampled wavelengths per path instead of RGB");
     cmd->add_option("--max-spp", o->settings.maxSpp, "Stop accumulating at this spp")
         ->capture_default_str();
     cmd->add_option("--reference", o->reference,

@@ -53,7 +53,9 @@ StudySpec referenceSpecFor(const ReferenceTarget& target, int spp, const std::st
     spec.maxDepth = target.maxDepth;
     spec.russianRoulette = target.russianRoulette;
     spec.rouletteDepth = kDefaultRouletteDepth;
-    spec.reference = {spp, sampler, seed};
+    spec.lightSampler = target.lightSampler;
+    spec.spectral = target.spectral;
+    spec.reference.spp = spp, spec.reference.sampler = sampler, spec.reference.seed = seed;
     return spec;
 }
 

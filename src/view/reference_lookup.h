@@ -19,10 +19,13 @@ struct ReferenceTarget {
     Vec2i size{0, 0};   // resolved: never 0×0
     int maxDepth = 8;
     bool russianRoulette = true;
+    std::string lightSampler;  // "": the scene's own, as a study without light_sampler
+    bool spectral = false;
 
     bool operator==(const ReferenceTarget& o) const {
         return scene == o.scene && size.x == o.size.x && size.y == o.size.y &&
-               maxDepth == o.maxDepth && russianRoulette == o.russianRoulette;
+               maxDepth == o.maxDepth && russianRoulette == o.russianRoulette &&
+               lightSampler == o.lightSampler && spectral == o.spectral;
     }
 };
 
@@ -45,7 +48,7 @@ struct FoundReference {
 // The cached reference of `scene` (as loaded) for `target` with the most
 // samples, or nullopt. An entry counts only when its key, recomputed from the
 // scene and settings, is the one it was stored under: the same renderer
-// version, scene contents, size, depth and roulette.
+// version, scene contents, size, depth, roulette, light sampler and colour.
 std::optional<FoundReference> findCachedReference(const ReferenceCache& cache,
                                                   const RenderScene& scene,
                                                   const ReferenceTarget& target);

@@ -21,6 +21,7 @@ RenderSettings renderSettingsFor(const ViewSettings& v, const std::string& sampl
     s.resolution = v.size;
     s.maxDepth = v.maxDepth;
     s.russianRoulette = v.russianRoulette;
+    s.spectral = v.spectral;
     s.threads = threads;
     s.control = control;
     return s;
@@ -28,8 +29,13 @@ RenderSettings renderSettingsFor(const ViewSettings& v, const std::string& sampl
 
 }  // namespace
 
-std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene) {
-    return std::make_shared<const RenderScene>(loadScene(scene));
+std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene,
+                                                 const std::string& lightSampler) {
+    SceneDescription description = loadScene(scene);
+    // As `pathlab render --light-sampler`: the choice is made when the
+    // render scene is built (its light tree or power table).
+    if (!lightSampler.empty()) description.defaults.lightSampler = lightSampler;
+    return std::make_shared<const RenderScene>(std::move(description));
 }
 
 ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScene> scene,
@@ -41,6 +47,8 @@ ViewSession::ViewSession(ViewSettings settings, std::shared_ptr<const RenderScen
         errors_ = std::make_shared<ErrorHistory>(std::move(reference));
         referenceTarget_ = {settings_.scene,
                             {errors_->reference().width, errors_->reference().height}};
+        referenceTarget_.lightSampler = settings_.lightSampler;
+        referenceTarget_.spectral = settings_.spectral;
         referenceSource_ = "file";
     }
     requestRestartLocked();  // generation 1; no other thread yet
@@ -173,7 +181,9 @@ bool ViewSession::referenceFits(const Image& image) const {
 // Called with the lock held: what a reference for the current settings shows.
 ReferenceTarget ViewSession::targetLocked() const {
     const Vec2i size = settings_.size.x > 0 ? settings_.size : scene_->description().resolution;
-    return {settings_.scene, size, settings_.maxDepth, settings_.russianRoulette};
+    return {settings_.scene,        size,
+            settings_.maxDepth,     settings_.russianRoulette,
+            settings_.lightSampler, settings_.spectral};
 }
 
 std::vector<float> ViewSession::errorMap(const Image& image, ErrorMapKind kind) const {
@@ -259,9 +269,9 @@ SessionStatus ViewSession::update(const nlohmann::json& changes) {
     std::unique_lock<std::mutex> lock(mutex_);
     ViewSettings next = applySettingsJson(settings_, changes);
     std::shared_ptr<const RenderScene> scene = scene_;
-    if (next.scene != settings_.scene) {
+    if (next.scene != settings_.scene || next.lightSampler != settings_.lightSampler) {
         lock.unlock();  // loading may take a while; the render goes on meanwhile
-        scene = loadViewScene(next.scene);
+        scene = loadViewScene(next.scene, next.lightSampler);
         lock.lock();
         // Another request may have changed the settings meanwhile: apply the
         // changes to those, with the scene just loaded.

@@ -45,8 +45,10 @@ struct SessionStatus {
     std::string error;  // a render that failed (then running is false)
 };
 
-// The scene a settings object names, loaded (InputError when it cannot be).
-std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene);
+// The scene a settings object names, loaded (InputError when it cannot be),
+// choosing its lights by `lightSampler` ("": the scene file's own choice).
+std::shared_ptr<const RenderScene> loadViewScene(const std::string& scene,
+                                                 const std::string& lightSampler = "");
 
 class ViewSession {
   public:

@@ -7,6 +7,7 @@
 #include "core/image.h"
 #include "core/seed.h"
 #include "sampling/registry.h"
+#include "scene/light_selection.h"
 
 namespace pathlab::view {
 namespace {
@@ -55,6 +56,10 @@ void applyOne(ViewSettings& s, const std::string& key, const json& v) {
         s.maxDepth = inRange(integerOf(v, key), 0, 1024, key);
     } else if (key == "russian_roulette") {
         s.russianRoulette = boolOf(v, key);
+    } else if (key == "light_sampler") {
+        s.lightSampler = v.is_null() ? "" : stringOf(v, key);
+    } else if (key == "spectral") {
+        s.spectral = boolOf(v, key);
     } else if (key == "max_spp") {
         s.maxSpp = inRange(integerOf(v, key), 1, 1 << 24, key);
     } else if (key == "equal") {
@@ -77,6 +82,7 @@ void applyOne(ViewSettings& s, const std::string& key, const json& v) {
 void validateViewSettings(const ViewSettings& s) {
     samplerInfo(s.sampler);  // throws InputError for an unknown name
     if (!s.compare.empty()) samplerInfo(s.compare);
+    if (!s.lightSampler.empty()) parseLightSelection(s.lightSampler, "setting 'light_sampler'");
     if ((s.size.x == 0) != (s.size.y == 0))
         throw InputError("image size needs both a width and a height");
 }

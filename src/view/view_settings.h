@@ -23,6 +23,8 @@ struct ViewSettings {
     Vec2i size{0, 0};  // 0×0: the scene's own
     int maxDepth = 8;
     bool russianRoulette = true;
+    std::string lightSampler;      // uniform, power or bvh; empty: the scene's own
+    bool spectral = false;         // four sampled wavelengths per path instead of RGB
     int maxSpp = 65536;            // accumulation stops there
     EqualBy equal = EqualBy::Spp;  // A and B at equal spp, or equal render time
     // The display.
@@ -33,7 +35,8 @@ struct ViewSettings {
     bool sameRender(const ViewSettings& o) const {
         return scene == o.scene && sampler == o.sampler && compare == o.compare && seed == o.seed &&
                size.x == o.size.x && size.y == o.size.y && maxDepth == o.maxDepth &&
-               russianRoulette == o.russianRoulette && maxSpp == o.maxSpp && equal == o.equal;
+               russianRoulette == o.russianRoulette && lightSampler == o.lightSampler &&
+               spectral == o.spectral && maxSpp == o.maxSpp && equal == o.equal;
     }
 };
 
@@ -43,7 +46,8 @@ void validateViewSettings(const ViewSettings& settings);
 
 // `settings` with the members a JSON object names replaced ("scene",
 // "sampler", "compare", "seed", "width", "height", "max_depth",
-// "russian_roulette", "max_spp", "equal", "exposure", "tone_map", "paused"), then
+// "russian_roulette", "light_sampler", "spectral", "max_spp", "equal",
+// "exposure", "tone_map", "paused"), then
 // validated. Throws InputError naming an unknown key, a value of the wrong
 // type or one out of range.
 ViewSettings applySettingsJson(ViewSettings settings, const nlohmann::json& changes);

@@ -200,3 +200,44 @@ def test_a_pbrt_files_sampler_and_depth_apply_where_the_call_is_silent(cli, tmp_
     out = tmp_path / "cli.exr"
     cli("render", "--scene", source, "--size", "24x16", "--spp", 2, "-o", out)
     assert same_bits(pathlab.render(scene, size=(24, 16), spp=2), pathlab.read_image(out))
+
+
+MANY_LIGHTS = str(pathlib.Path(__file__).resolve().parents[2] / "scenes/pbrt/many-lights.pbrt")
+
+
+def test_light_sampler_and_spectral_equal_the_cli(cli, tmp_path):
+    # 200 lights of unequal power: each strategy makes its own image.
+    images = {}
+    for light_sampler in ("uniform", "power", "bvh"):
+        images[light_sampler] = pathlab.render(MANY_LIGHTS, light_sampler=light_sampler,
+                                               **SETTINGS)
+        cli_image = cli_render(cli, tmp_path, MANY_LIGHTS, ("--light-sampler", light_sampler))
+        assert same_bits(images[light_sampler], cli_image), light_sampler
+    assert not same_bits(images["uniform"], images["power"])
+    assert not same_bits(images["power"], images["bvh"])
+    # A loaded scene of another choice is loaded again, as it was.
+    scene = pathlab.load_scene(MANY_LIGHTS, light_sampler="uniform")
+    assert scene.light_sampler == "uniform"
+    assert same_bits(pathlab.render(scene, **SETTINGS), images["uniform"])
+    assert same_bits(pathlab.render(scene, light_sampler="bvh", **SETTINGS), images["bvh"])
+    # Spectral, as --spectral; progressive steps are the renders of their spp.
+    spectral = pathlab.render(MANY_LIGHTS, light_sampler="bvh", spectral=True, **SETTINGS)
+    cli_image = cli_render(cli, tmp_path, MANY_LIGHTS, ("--light-sampler", "bvh", "--spectral"))
+    assert same_bits(spectral, cli_image)
+    assert not same_bits(spectral, images["bvh"])
+    steps = dict(SETTINGS)
+    del steps["spp"]
+    last = list(pathlab.render_progressive(MANY_LIGHTS, 4, 2, light_sampler="bvh",
+                                           spectral=True, **steps))[-1]
+    assert last[0] == 4 and same_bits(last[1], spectral)
+
+
+@pytest.mark.parametrize("keywords,text", [
+    (dict(light_sampler="nearest"), "light_sampler must be one of uniform, power, bvh, got 'nearest'"),
+    (dict(light_sampler=3), "light_sampler must be uniform, power or bvh, got 3"),
+    (dict(spectral="yes"), "spectral must be True or False, got 'yes'"),
+])
+def test_bad_light_sampler_or_spectral_raise_naming_them(keywords, text):
+    with pytest.raises(ValueError) as error:
+        pathlab.render("cornell-box", **dict(SETTINGS, **keywords))
+    assert str(error.value) == text

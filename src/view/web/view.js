@@ -47,6 +47,8 @@ function showStatus(s) {
   $('sampler').value = s.sampler;
   $('compare').value = s.compare || '';
   $('russian_roulette').checked = s.russian_roulette;
+  $('light_sampler').value = s.light_sampler || '';
+  $('spectral').checked = s.spectral;
   $('exposure_value').textContent = Number(s.exposure).toFixed(2);
   for (const id of ['relse', 'flip']) $('map').querySelector(`[value=${id}]`).disabled = !s.reference;
   showReference(s);
@@ -397,6 +399,9 @@ function wireControls() {
   $('equal').addEventListener('change', () => change({ equal: $('equal').value }));
   $('russian_roulette').addEventListener('change',
     () => change({ russian_roulette: $('russian_roulette').checked }));
+  $('light_sampler').addEventListener('change',
+    () => change({ light_sampler: $('light_sampler').value || null }));
+  $('spectral').addEventListener('change', () => change({ spectral: $('spectral').checked }));
   $('exposure').addEventListener('input', () => change({ exposure: Number($('exposure').value) }));
   $('tone_map').addEventListener('change', () => change({ tone_map: $('tone_map').value }));
   $('pause').addEventListener('click', () => change({ paused: !state.status.paused }));
