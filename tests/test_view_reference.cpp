@@ -79,9 +79,10 @@ TEST_F(ViewReference, AStudysCachedReferenceIsFoundForItsSettingsOnly) {
 }
 
 // A study's light sampler is part of its reference: the view finds it with
-// the same light sampler only (and the scene loaded choosing by it).
+// the same light sampler only (and the scene loaded choosing by it). Its
+// [reference] ranges, in the key too, are read from the entry.
 TEST_F(ViewReference, AStudysLightSamplerIsPartOfItsReference) {
-    std::string text = studySpec(16);
+    std::string text = studySpec(16) + "ranges = 3\n";
     text.insert(text.find("[reference]"), "light_sampler = \"uniform\"\n");
     const auto spec = testing::writeSpec(dir, "spec.toml", text);
     const auto study =

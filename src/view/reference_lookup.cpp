@@ -15,6 +15,7 @@ struct Candidate {
     std::string key, sampler;
     int spp = 0;
     uint64_t seed = 0;
+    int ranges = 0;  // a study's [reference] ranges; 0 (or absent): automatic
 };
 
 // The entry's metadata when it describes a reference for `target` of this
@@ -31,7 +32,8 @@ std::optional<Candidate> candidateOf(const fs::path& metadata, const StudyScene&
             m.at("roulette_depth") != kDefaultRouletteDepth)
             return std::nullopt;
         return Candidate{m.at("cache_key").get<std::string>(), m.at("sampler").get<std::string>(),
-                         m.at("spp").get<int>(), m.at("seed").get<uint64_t>()};
+                         m.at("spp").get<int>(), m.at("seed").get<uint64_t>(),
+                         m.value("ranges", 0)};
     } catch (const std::exception&) {
         return std::nullopt;  // another file, or a damaged one: not ours
     }
@@ -69,7 +71,8 @@ std::optional<FoundReference> findCachedReference(const ReferenceCache& cache,
         if (e.path().extension() != ".json") continue;
         const std::optional<Candidate> c = candidateOf(e.path(), source, target);
         if (!c || (best && best->spp >= c->spp)) continue;
-        const StudySpec spec = referenceSpecFor(target, c->spp, c->sampler, c->seed);
+        StudySpec spec = referenceSpecFor(target, c->spp, c->sampler, c->seed);
+        spec.reference.ranges = c->ranges;
         if (referenceCacheKey(scene.description(), source, spec) == c->key) best = c;
     }
     if (!best) return std::nullopt;

@@ -205,7 +205,11 @@ def test_a_pbrt_files_sampler_and_depth_apply_where_the_call_is_silent(cli, tmp_
 MANY_LIGHTS = str(pathlib.Path(__file__).resolve().parents[2] / "scenes/pbrt/many-lights.pbrt")
 
 
-def test_light_sampler_and_spectral_equal_the_cli(cli, tmp_path):
+def test_light_sampler_and_spectral_equal_the_cli(cli, tmp_path, monkeypatch):
+    # The user's cache, as the C++ tests use it: spectral mode's RGB-to-spectrum
+    # table (15 s of CPU to make, validated on every read) is made once, not
+    # once per test. Nothing else is cached by a render.
+    monkeypatch.delenv("PATHLAB_CACHE")
     # 200 lights of unequal power: each strategy makes its own image.
     images = {}
     for light_sampler in ("uniform", "power", "bvh"):
