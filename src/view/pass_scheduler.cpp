@@ -20,21 +20,36 @@ bool PassScheduler::done() const {
     return track_[0].spp >= maxSpp_ && (!hasB_ || track_[1].spp >= maxSpp_);
 }
 
+// How long a progressive sampler's passes may grow after `seconds` of
+// rendering: a quarter second at first (the image changes fast), then a
+// fifth of the time so far, up to kLongestPass. Each pass costs a fixed part
+// besides its samples — each pixel's sampler set-up and path batches that
+// pass's few samples leave part-empty (render/path_integrator.h): ≈ 80 ms at
+// 512² on two cores, a pass of 8 spp costing as much as 10 — so short passes
+// would keep that share high (×1.24 the render's time at 1024 spp with the
+// 8-spp passes of a fixed quarter second); growing with the elapsed time
+// brings it to ≈ 4% there, while the image still updates at least every
+// 2 × kLongestPass (tests/test_view_equal_time.cpp models it).
+double PassScheduler::passSecondsAfter(double seconds) {
+    return std::clamp(0.2 * seconds, 0.25, kLongestPass);
+}
+
 // The sample count of a sampler's next pass. The first pass is 1 spp, so a
 // restart shows an image at once. Progressive samplers then add a batch that
 // doubles up to kPacketWidth samples, and beyond while passes take under
-// 0.25 s, and halves when one takes over 1 s, but never below kPacketWidth: a
-// pixel's samples are traced as packets of eight and their paths in batches
-// (render/path_integrator.h), and passes of one sample would leave the
-// packets nearly empty — at 512² sixteen 1-spp passes took 1.9 times as long
-// as one 16-spp render (bench/view_interactivity.py). Other samplers render
-// each pass afresh: doubling the count keeps the total within twice the last
-// pass.
+// passSecondsAfter (the render time so far), and halves when one takes over
+// twice that, but never below kPacketWidth: a pixel's samples are traced as
+// packets of eight and their paths in batches (render/path_integrator.h),
+// and passes of one sample would leave the packets nearly empty — at 512²
+// sixteen 1-spp passes took 1.9 times as long as one 16-spp render
+// (bench/view_interactivity.py). Other samplers render each pass afresh:
+// doubling the count keeps the total within twice the last pass.
 int PassScheduler::nextCount(Track& t, double lastPassSeconds) const {
     if (t.spp == 0) return 1;
     if (!t.progressive) return std::min(maxSpp_, t.spp * 2);
-    if ((t.batch < kPacketWidth || lastPassSeconds < 0.25) && t.batch < (1 << 20)) t.batch *= 2;
-    if (lastPassSeconds > 1.0 && t.batch > kPacketWidth) t.batch /= 2;
+    const double longest = passSecondsAfter(t.seconds);
+    if ((t.batch < kPacketWidth || lastPassSeconds < longest) && t.batch < (1 << 20)) t.batch *= 2;
+    if (lastPassSeconds > 2 * longest && t.batch > kPacketWidth) t.batch /= 2;
     return int(std::min<int64_t>(maxSpp_, int64_t(t.spp) + t.batch));
 }
 

@@ -30,6 +30,11 @@ class PassScheduler {
     int spp(int which) const { return track_[which].spp; }
     double seconds(int which) const { return track_[which].seconds; }
 
+    // A progressive sampler's passes grow while they take less than this,
+    // after `seconds` of its render time (pass_scheduler.cpp says why).
+    static constexpr double kLongestPass = 2.0;
+    static double passSecondsAfter(double seconds);
+
   private:
     struct Track {
         bool progressive = true;

@@ -19,7 +19,7 @@ struct ReferenceTarget {
     Vec2i size{0, 0};   // resolved: never 0×0
     int maxDepth = 8;
     bool russianRoulette = true;
-    std::string lightSampler;  // "": the scene's own, as a study without light_sampler
+    std::string lightSampler{};  // "": the scene's own, as a study without light_sampler
     bool spectral = false;
 
     bool operator==(const ReferenceTarget& o) const {
