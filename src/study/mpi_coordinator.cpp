@@ -38,24 +38,12 @@ std::string renderLabel(const RenderTask& task) {
 // Rank 0's own renders, on the thread that runs this.
 void renderOnRankZero(RenderQueue& queue, const std::vector<RankScene>& scenes,
                       const CellWriter& writer) {
-    while (const std::optional<RenderTask> task = queue.nextLocal(renderLabel)) {
-        const RankScene& scene = scenes.at(size_t(task->scene));
-        try {
-            queue.addLocalResult(
-                renderCellGroup(*scene.job, scene.reference, *scene.meter, task->cells, writer));
-        } catch (const InputError& e) {
-            queue.fail(std::make_exception_ptr(InputError(
-                "rank 0, rendering " + cellLabel(task->cells.cells.front()) + ": " + e.what())));
-        } catch (...) {
-            queue.fail(std::current_exception());
-        }
-    }
-}
-
-std::exception_ptr reportedFailure(const std::vector<char>& bytes) {
-    const std::string text(bytes.begin() + (bytes.empty() ? 0 : 1), bytes.end());
-    if (!bytes.empty() && bytes[0] == 'I') return std::make_exception_ptr(InputError(text));
-    return std::make_exception_ptr(std::runtime_error(text));
+    renderQueueOnRankZero(
+        queue, renderLabel, [](const RenderTask& t) { return cellLabel(t.cells.cells.front()); },
+        [&](const RenderTask& t) {
+            const RankScene& scene = scenes.at(size_t(t.scene));
+            return renderCellGroup(*scene.job, scene.reference, *scene.meter, t.cells, writer);
+        });
 }
 
 // One message of a worker: its results are committed, and it gets the next

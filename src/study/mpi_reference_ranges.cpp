@@ -33,24 +33,10 @@ void renderRangesOnRankZero(RangeQueue& queue, const std::vector<SceneJob>& jobs
     const auto label = [&](const RangeTask& t) {
         return rangeLabel(jobs.at(size_t(t.scene)), spec, t.index);
     };
-    while (const std::optional<RangeTask> task = queue.nextLocal(label)) {
-        try {
-            queue.addLocalResult(
-                {task->scene, renderReferenceRange(*jobs.at(size_t(task->scene)).render, spec,
-                                                   threads, task->index)});
-        } catch (const InputError& e) {
-            queue.fail(std::make_exception_ptr(
-                InputError("rank 0, rendering " + label(*task) + ": " + e.what())));
-        } catch (...) {
-            queue.fail(std::current_exception());
-        }
-    }
-}
-
-std::exception_ptr reportedFailure(const std::vector<char>& bytes) {
-    const std::string text(bytes.begin() + (bytes.empty() ? 0 : 1), bytes.end());
-    if (!bytes.empty() && bytes[0] == 'I') return std::make_exception_ptr(InputError(text));
-    return std::make_exception_ptr(std::runtime_error(text));
+    renderQueueOnRankZero(queue, label, label, [&](const RangeTask& t) {
+        return RenderedRange{t.scene, renderReferenceRange(*jobs.at(size_t(t.scene)).render, spec,
+                                                           threads, t.index)};
+    });
 }
 
 }  // namespace

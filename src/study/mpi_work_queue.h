@@ -5,11 +5,14 @@
 #pragma once
 
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/error.h"
 
 namespace pathlab {
 
@@ -68,5 +71,24 @@ class WorkQueue {
     std::vector<Result> local_;
     std::string localLabel_;
 };
+
+// Rank 0's own thread: takes tasks from `queue` until none is left (or one
+// failed), rendering each with `render` and adding its result. A failure ends
+// the queue; the user's input errors are named "rank 0, rendering WHAT: …"
+// with `what` of the task, as other ranks name theirs (failureMessage).
+template <typename Task, typename Result, typename LabelOf, typename WhatOf, typename Render>
+void renderQueueOnRankZero(WorkQueue<Task, Result>& queue, const LabelOf& labelOf,
+                           const WhatOf& whatOf, const Render& render) {
+    while (const std::optional<Task> task = queue.nextLocal(labelOf)) {
+        try {
+            queue.addLocalResult(render(*task));
+        } catch (const InputError& e) {
+            queue.fail(std::make_exception_ptr(
+                InputError("rank 0, rendering " + whatOf(*task) + ": " + e.what())));
+        } catch (...) {
+            queue.fail(std::current_exception());
+        }
+    }
+}
 
 }  // namespace pathlab

@@ -48,6 +48,12 @@ std::vector<char> failureMessage(const MpiSession& session, const std::string& w
     return std::vector<char>(text.begin(), text.end());
 }
 
+std::exception_ptr reportedFailure(const std::vector<char>& bytes) {
+    const std::string text(bytes.begin() + (bytes.empty() ? 0 : 1), bytes.end());
+    if (!bytes.empty() && bytes[0] == 'I') return std::make_exception_ptr(InputError(text));
+    return std::make_exception_ptr(std::runtime_error(text));
+}
+
 void runStudyWorker(const MpiSession& session, const std::vector<RankScene>& scenes,
                     const study_steps::CellWriter& writer) {
     sendMessage(0, kTagReady, {});

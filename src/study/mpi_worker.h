@@ -39,5 +39,7 @@ bool messageWaiting();
 // byte 'I' for the user's input (InputError), else 'E', then the line.
 std::vector<char> failureMessage(const MpiSession& session, const std::string& what,
                                  const std::exception& error);
+// The error a FAILED message carries, as rank 0 rethrows it.
+std::exception_ptr reportedFailure(const std::vector<char>& bytes);
 
 }  // namespace pathlab
