@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "image_test_util.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
@@ -14,10 +15,7 @@
 namespace pathlab {
 namespace {
 
-bool sameBytes(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
-           std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
-}
+using testing::sameBytes;
 
 RenderSettings smallCornell(const std::string& sampler, int spp, bool weightedFilm) {
     RenderSettings s;

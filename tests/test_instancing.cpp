@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "image_test_util.h"
 #include "instancing_test_util.h"
 #include "metrics/image_metrics.h"
 #include "render/renderer.h"
@@ -271,10 +272,7 @@ TEST(Instancing, RendersTheFlattenedScenesImage) {
     EXPECT_GT(noise, 1e-3);
 }
 
-bool sameBytes(const Image& a, const Image& b) {
-    return a.rgb.size() == b.rgb.size() &&
-           std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
-}
+using testing::sameBytes;
 
 TEST(Instancing, BatchedAndScalarIntegratorsAgree) {
     // As for top-level geometry (docs/rendering.md), byte for byte: the

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "image_test_util.h"
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
@@ -274,10 +275,7 @@ std::vector<PixelFilter> everyFilter() {
     return filters;
 }
 
-bool sameBytes(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
-           std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
-}
+using testing::sameBytes;
 
 TEST(WeightedFilm, ConstantRadianceComesOutExactlyWithAnyFilter) {
     // Σ w·L / Σ w = L whatever the weights, negative ones included; with

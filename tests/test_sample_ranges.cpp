@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "image_test_util.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
@@ -35,11 +36,7 @@ RunningSums renderRange(const RenderScene& scene, RenderSettings s, SampleRange 
     return sums;
 }
 
-bool sameBytes(const Image& a, const Image& b) {
-    return a.rgb.size() == b.rgb.size() &&
-           (a.rgb.empty() ||
-            std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0);
-}
+using testing::sameBytes;
 
 template <typename T>
 bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {

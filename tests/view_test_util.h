@@ -10,16 +10,12 @@
 #include <memory>
 #include <thread>
 
+#include "image_test_util.h"
 #include "render/renderer.h"
 #include "view/view_server.h"
 #include "view/view_session.h"
 
 namespace pathlab::testing {
-
-inline bool sameBytes(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
-           std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
-}
 
 // Small, quick settings: a 32×24 Cornell box of depth 4.
 inline view::ViewSettings smallViewSettings(const std::string& sampler,
