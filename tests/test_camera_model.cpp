@@ -11,6 +11,7 @@
 #include <map>
 
 #include "core/hash.h"
+#include "render/batched_paths.h"
 #include "render/camera_model.h"
 #include "render/camera_samples.h"
 #include "render/path_integrator.h"

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/float_mode.h"
 #include "core/thread_annotations.h"
+#include "render/batched_paths.h"
 #include "render/camera_model.h"
 #include "render/camera_samples.h"
 #include "render/colour/spectral_paths.h"
@@ -22,6 +23,7 @@
 #include "render/pixel_filter.h"
 #include "render/running_sums.h"
 #include "sampling/registry.h"
+#include "spectral/rgb_spectrum_table.h"
 
 namespace pathlab {
 namespace {
@@ -332,6 +334,12 @@ void validateRenderSettings(const RenderSettings& s) {
 
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     validateRenderSettings(settings);
+    // Spectral mode's RGB-to-spectrum table is read (or made) once per
+    // process, like the scene's acceleration structure, before the clock.
+    if (settings.spectral) {
+        checkSpectralSupport(scene.description());
+        spectral::defaultRgbToSpectrumTable();
+    }
     const auto start = std::chrono::steady_clock::now();
     const SceneDescription& desc = scene.description();
     // The full image the camera maps; the rendered image is its crop.
