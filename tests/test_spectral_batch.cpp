@@ -1,9 +1,12 @@
-// Spectral mode's batched paths (render/batched_paths.h with spectral colour
-// contexts) against the scalar integrator with the same contexts: the
+// Spectral mode's faster evaluations against the ones they replace, bit for
+// bit: the batched paths (render/batched_paths.h with spectral colour
+// contexts) against the scalar integrator with the same contexts — the
 // kernel's four-channel outputs lane by lane, and whole spectral renders with
-// and without batching, bit for bit.
+// and without batching — the sigmoid at four wavelengths at once, and the
+// tabulated spectra's grid lookups.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -14,6 +17,8 @@
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loader.h"
+#include "spectral/cie_functions.h"
+#include "spectral/named_illuminants.h"
 
 namespace pathlab {
 namespace {
@@ -138,6 +143,43 @@ TEST(SpectralBatch, SigmoidAtFourWavelengthsIsTheScalarSigmoidBitForBit) {
                 << " nm: " << poly(w.lambda(i)) << " against " << s[i];
     }
     EXPECT_EQ(compared, int(polys.size()) * spectral::kSpectrumSamples);
+}
+
+// The linear interpolation between the knots around λ, the interval found by
+// binary search (what PiecewiseLinearSpectrum did before its grid lookup).
+double bySearch(const spectral::PiecewiseLinearSpectrum& s, double lambda) {
+    const std::vector<double>&l = s.wavelengths(), &v = s.values();
+    if (lambda < l.front() || lambda > l.back()) return 0;
+    const size_t hi = size_t(std::upper_bound(l.begin(), l.end(), lambda) - l.begin());
+    if (hi >= l.size()) return v.back();
+    const double t = (lambda - l[hi - 1]) / (l[hi] - l[hi - 1]);
+    return (1 - t) * v[hi - 1] + t * v[hi];
+}
+
+TEST(SpectralLookups, GridLookupsAreTheBinarySearchesBitForBit) {
+    // D65 (5-nm knots, the grid) and an irregular spectrum (binary search),
+    // at random wavelengths, at every knot and a rounding step either side.
+    const spectral::PiecewiseLinearSpectrum& d65 = *spectral::namedIlluminant("stdillum-D65");
+    const auto irregular =
+        spectral::PiecewiseLinearSpectrum::fromInterleaved({400, 1, 410, 2, 431, 0.5, 700, 3});
+    std::mt19937 rng(9);
+    for (const spectral::PiecewiseLinearSpectrum* s : {&d65, &irregular}) {
+        std::vector<double> at;
+        for (int i = 0; i < 2000; ++i)
+            at.push_back(std::uniform_real_distribution<double>(300, 850)(rng));
+        for (double knot : s->wavelengths())
+            for (double l : {std::nextafter(knot, 0.0), knot, std::nextafter(knot, 1e9)})
+                at.push_back(l), at.push_back(double(float(l)));
+        for (double l : at) ASSERT_EQ((*s)(l), bySearch(*s, l)) << l;
+    }
+    // The CIE functions at once, as each alone.
+    for (int i = 0; i < 5000; ++i) {
+        const float l = std::uniform_real_distribution<float>(350, 840)(rng);
+        const Vec3f xyz = spectral::cieXyzMatching(l);
+        ASSERT_TRUE(same(xyz.x, float(spectral::cieX(l))) &&
+                    same(xyz.y, float(spectral::cieY(l))) && same(xyz.z, float(spectral::cieZ(l))))
+            << l;
+    }
 }
 
 std::vector<float> renderImage(const RenderScene& scene, RenderSettings s, bool batch,
