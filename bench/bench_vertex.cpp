@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "render/batched_paths.h"
 #include "render/diffuse_batch.h"
 #include "render/path_integrator.h"
 #include "scene/builtin_scenes.h"

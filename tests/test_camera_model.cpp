@@ -11,6 +11,7 @@
 #include <map>
 
 #include "core/hash.h"
+#include "render/batched_paths.h"
 #include "render/camera_model.h"
 #include "render/camera_samples.h"
 #include "render/path_integrator.h"
@@ -235,10 +236,9 @@ std::map<std::pair<int, int>, int> drawnDimensions(const Camera& camera, bool ba
                           dirs + p0, weights + p0);
     for (int k = 0; k < count; ++k) found[k] = scene.intersect(origins[k], dirs[k], &si[k]);
     PathCounters counters;
-    BatchPaths paths;
     if (batch)
         estimateRadianceBatch(scene, dirs, found, si, count, sampler, pixel, 0, settings, counters,
-                              paths, L);
+                              L);
     else
         for (int k = 0; k < count; ++k)
             L[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler, pixel, k,

@@ -7,8 +7,8 @@
 #include <iostream>
 #include <random>
 
+#include "render/batched_paths.h"
 #include "render/diffuse_batch.h"
-#include "render/path_integrator.h"
 #include "render/renderer.h"
 #include "sampling/registry.h"
 #include "scene/builtin_scenes.h"
@@ -141,7 +141,7 @@ void compareBatch(const RenderScene& scene, BatchIsa isa, int lanes, RandomVerti
             expectSame(v.direct->origin, out.sox[k], out.soy[k], out.soz[k], "shadow origin", k);
             expectSame(v.direct->toLight, out.sdx[k], out.sdy[k], out.sdz[k], "shadow ray", k);
             EXPECT_TRUE(same(v.direct->tMax, out.shadowTMax[k])) << "shadow ray's end, lane " << k;
-            expectSame(v.direct->contribution, out.directR[k], out.directG[k], out.directB[k],
+            expectSame(v.direct->contribution, out.direct[0][k], out.direct[1][k], out.direct[2][k],
                        "direct", k);
         }
         ASSERT_EQ(v.bounce.has_value(), out.bounce[k] != 0) << "lane " << k;
@@ -149,7 +149,7 @@ void compareBatch(const RenderScene& scene, BatchIsa isa, int lanes, RandomVerti
         ++outcomes.bounces;
         expectSame(v.bounceDir, out.wx[k], out.wy[k], out.wz[k], "bounce direction", k);
         expectSame(v.bounceOrigin, out.ox[k], out.oy[k], out.oz[k], "bounce origin", k);
-        expectSame(v.bounce->weight(), out.weightR[k], out.weightG[k], out.weightB[k],
+        expectSame(v.bounce->weight(), out.weight[0][k], out.weight[1][k], out.weight[2][k],
                    "bounce weight", k);
         EXPECT_TRUE(same(v.bounce->pdf, out.pdf[k])) << "bounce pdf of lane " << k;
     }

@@ -36,9 +36,13 @@ F sqrtV(F x) {
 }
 #include "render/diffuse_batch_lanes.inc"
 }  // namespace
-void shade(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
-           DiffuseBatchOutput& out) {
-    shadeLanes(light, epsilon, in, 0, out);
+void shadeRgb(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
+              DiffuseBatchOutput& out) {
+    shadeLanes<3>(light, epsilon, in, 0, out);
+}
+void shadeSpectral(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
+                   DiffuseBatchOutput& out) {
+    shadeLanes<kMaxBatchChannels>(light, epsilon, in, 0, out);
 }
 }  // namespace avx2
 PATHLAB_AVX2_END
@@ -49,8 +53,16 @@ bool batchUsesAvx2() {
 
 void shadeDiffuseBatch(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
                        int lanes, DiffuseBatchOutput& out, BatchIsa isa) {
-    if (isa == BatchIsa::Best && batchUsesAvx2()) return avx2::shade(light, epsilon, in, out);
-    for (int k = 0; k < lanes; k += sse::kWidth) sse::shadeLanes(light, epsilon, in, k, out);
+    if (isa == BatchIsa::Best && batchUsesAvx2()) return avx2::shadeRgb(light, epsilon, in, out);
+    for (int k = 0; k < lanes; k += sse::kWidth) sse::shadeLanes<3>(light, epsilon, in, k, out);
+}
+
+void shadeDiffuseBatchSpectral(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
+                               int lanes, DiffuseBatchOutput& out, BatchIsa isa) {
+    if (isa == BatchIsa::Best && batchUsesAvx2())
+        return avx2::shadeSpectral(light, epsilon, in, out);
+    for (int k = 0; k < lanes; k += sse::kWidth)
+        sse::shadeLanes<kMaxBatchChannels>(light, epsilon, in, k, out);
 }
 
 }  // namespace pathlab

@@ -11,6 +11,12 @@
 // operations in the same order, lane by lane — tested against them in
 // tests/test_diffuse_batch.cpp. (No fused multiply-add: the build targets
 // x86-64 without FMA, where GCC contracts nothing.)
+//
+// The colour a lane carries is a few channels whose arithmetic is the same
+// per channel: RGB mode's three, or spectral mode's four wavelengths
+// (render/colour/): Lambert's f and the bounce's weight are the reflectance's
+// channels times colourless factors, and the light sample's estimate is f
+// times the light's radiance in the same channels.
 #pragma once
 
 #include "core/math.h"
@@ -19,6 +25,8 @@
 namespace pathlab {
 
 inline constexpr int kBatchLanes = 8;
+// Colour channels per lane: 3 (RGB) or 4 (spectral::kSpectrumSamples).
+inline constexpr int kMaxBatchChannels = 4;
 
 // One vertex per lane: the hit, the ray that found it and the two 2D draws.
 struct DiffuseBatchInput {
@@ -26,7 +34,7 @@ struct DiffuseBatchInput {
     float nx[kBatchLanes], ny[kBatchLanes], nz[kBatchLanes];  // shading normal
     float gx[kBatchLanes], gy[kBatchLanes], gz[kBatchLanes];  // geometric normal
     float dx[kBatchLanes], dy[kBatchLanes], dz[kBatchLanes];  // incoming direction
-    float ar[kBatchLanes], ag[kBatchLanes], ab[kBatchLanes];  // albedo
+    float albedo[kMaxBatchChannels][kBatchLanes];             // the reflectance, per channel
     float dirU[kBatchLanes], dirV[kBatchLanes];               // BSDF direction draw
     // With one area light sampled by area, the light point's draw; the kernel
     // samples the light itself.
@@ -34,9 +42,12 @@ struct DiffuseBatchInput {
     // Otherwise the light sample the caller drew (LightSet::sample): direction,
     // distance (infinite for the environment), radiance, pdf, whether there
     // is one and whether it is a point, spot or distant light's (MIS weight 1).
+    // The radiance is the sample's in the lane's colour channels; in spectral
+    // mode it is given with the only light too (its RGB radiance at the
+    // lane's wavelengths).
     float lightWx[kBatchLanes], lightWy[kBatchLanes], lightWz[kBatchLanes];
     float lightDistance[kBatchLanes];
-    float lightR[kBatchLanes], lightG[kBatchLanes], lightB[kBatchLanes];
+    float lightRadiance[kMaxBatchChannels][kBatchLanes];
     float lightPdf[kBatchLanes];
     int lightValid[kBatchLanes];
     int lightDelta[kBatchLanes];
@@ -50,13 +61,13 @@ struct DiffuseBatchOutput {
     float sox[kBatchLanes], soy[kBatchLanes], soz[kBatchLanes];
     float sdx[kBatchLanes], sdy[kBatchLanes], sdz[kBatchLanes];
     float shadowTMax[kBatchLanes];
-    float directR[kBatchLanes], directG[kBatchLanes], directB[kBatchLanes];
+    float direct[kMaxBatchChannels][kBatchLanes];  // per colour channel
     int shadow[kBatchLanes];
     // The bounce, where bounce[k] is set (else the BSDF sample failed): the
     // world direction, its nudged origin, the throughput factor and the pdf.
     float ox[kBatchLanes], oy[kBatchLanes], oz[kBatchLanes];
     float wx[kBatchLanes], wy[kBatchLanes], wz[kBatchLanes];
-    float weightR[kBatchLanes], weightG[kBatchLanes], weightB[kBatchLanes];
+    float weight[kMaxBatchChannels][kBatchLanes];  // per colour channel
     float pdf[kBatchLanes];
     int bounce[kBatchLanes];
 };
@@ -69,8 +80,13 @@ bool batchUsesAvx2();
 // Lanes 0 … lanes − 1 are shaded; lanes up to the next multiple of the
 // vector width are computed too and may hold anything. `light`: the scene's
 // only light, sampled here; null: the input carries each lane's light sample.
-// `epsilon` is RenderScene's ray-origin offset.
+// `epsilon` is RenderScene's ray-origin offset. RGB: channels 0–2, the only
+// light's radiance its own.
 void shadeDiffuseBatch(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
                        int lanes, DiffuseBatchOutput& out, BatchIsa isa = BatchIsa::Best);
+// Spectral mode: channels 0–3, the only light's radiance from the input
+// (lightRadiance), as each lane's wavelengths see it.
+void shadeDiffuseBatchSpectral(const AreaLight* light, float epsilon, const DiffuseBatchInput& in,
+                               int lanes, DiffuseBatchOutput& out, BatchIsa isa = BatchIsa::Best);
 
 }  // namespace pathlab

@@ -18,7 +18,6 @@
 #include <optional>
 
 #include "render/colour/rgb_context.h"
-#include "render/diffuse_batch.h"
 #include "render/integrator_settings.h"
 #include "render/layered/walk_dimensions.h"
 #include "render/render_scene.h"
@@ -295,9 +294,10 @@ VertexShadingOf<typename Ctx::Colour> shadeVertex(const RenderScene& scene,
 // surface, or escape when !found) has already been traced: the camera rays of
 // a pixel are traced together as a packet (renderer.cpp). Later rays are traced
 // here one at a time. (`origin` is the camera ray's own: the eye, or its point
-// on the lens or the orthographic screen.) (The renderer traces batches, estimateRadianceBatch;
-// this is the reference it is tested against, and spectral mode's integrator:
-// ctx chooses the colour the path carries, colour/rgb_context.h.)
+// on the lens or the orthographic screen.) (The renderer traces batches,
+// estimateRadianceBatch in batched_paths.h; this is the reference it is tested
+// against in both colour modes: ctx chooses the colour the path carries,
+// colour/rgb_context.h.)
 template <Sampler S, class Ctx = RgbContext>
 typename Ctx::Colour estimateRadiance(const RenderScene& scene, Vec3f origin, Vec3f dir, bool found,
                                       SurfaceInteraction si, S& sampler, Vec2i pixel,
@@ -335,223 +335,6 @@ typename Ctx::Colour estimateRadiance(const RenderScene& scene, Vec3f origin, Ve
         if (!pathContinues(settings, depth, draws, beta)) break;
     }
     return L;
-}
-
-inline void setBatchLane(DiffuseBatchInput& in, int k, const SurfaceInteraction& si, Vec3f dir,
-                         Vec3f albedo, Vec2f uLight, Vec2f uDirection) {
-    in.px[k] = si.p.x, in.py[k] = si.p.y, in.pz[k] = si.p.z;
-    in.nx[k] = si.ns.x, in.ny[k] = si.ns.y, in.nz[k] = si.ns.z;
-    in.gx[k] = si.ng.x, in.gy[k] = si.ng.y, in.gz[k] = si.ng.z;
-    in.dx[k] = dir.x, in.dy[k] = dir.y, in.dz[k] = dir.z;
-    in.ar[k] = albedo.x, in.ag[k] = albedo.y, in.ab[k] = albedo.z;
-    in.lightU[k] = uLight.x, in.lightV[k] = uLight.y;
-    in.dirU[k] = uDirection.x, in.dirV[k] = uDirection.y;
-}
-
-inline void setBatchLightSample(DiffuseBatchInput& in, int k,
-                                const std::optional<LightSample>& ls) {
-    in.lightValid[k] = ls.has_value();
-    if (!ls) return;
-    in.lightWx[k] = ls->wi.x, in.lightWy[k] = ls->wi.y, in.lightWz[k] = ls->wi.z;
-    in.lightDistance[k] = ls->distance;
-    in.lightR[k] = ls->radiance.x, in.lightG[k] = ls->radiance.y, in.lightB[k] = ls->radiance.z;
-    in.lightPdf[k] = ls->pdf;
-    in.lightDelta[k] = ls->delta;
-}
-
-// The state of the paths estimateRadianceBatch traces together. Path k's
-// vertex at the current depth is in si[k] (found[k]: the ray that looked for
-// it hit); specularBounce[k]: the bounce to it was specular, so its emission
-// is unweighted, as the camera ray's. The caller keeps one for many calls
-// (the renderer: one per tile): a call resets the paths it traces, and
-// zeroing ≈ 5 KB for each pixel of a 1-spp pass cost as much as tracing it.
-struct BatchPaths {
-    Vec3f beta[kBatchSamples], dir[kBatchSamples], prevPoint[kBatchSamples],
-        prevNormal[kBatchSamples];
-    float prevBsdfPdf[kBatchSamples] = {};
-    bool alive[kBatchSamples] = {};
-    bool specularBounce[kBatchSamples] = {};
-    // A group's shading, reused: lanes past the live ones go to Embree too,
-    // masked, and hold what an earlier group left there.
-    DiffuseBatchInput in{};
-    DiffuseBatchOutput out{};
-};
-
-// A vertex that is not Lambertian, shaded on its own (shadeVertex, as
-// estimateRadiance's loop shades it) into lane j of a group's output.
-// Returns whether the bounce is specular.
-template <Sampler S>
-bool shadeLaneAlone(const RenderScene& scene, S& sampler, Vec2i pixel, int sampleIndex, int depth,
-                    const IntegratorSettings& settings, const SurfaceInteraction& si, Vec3f dir,
-                    int j, DiffuseBatchOutput& out, PathCounters& counters) {
-    VertexDimensions<S> draws(sampler, pixel, sampleIndex, depth, counters, settings.firstBounce,
-                              settings.maxDepth);
-    const VertexShading v = shadeVertex(scene, draws, si, dir);
-    out.shadow[j] = v.direct.has_value();
-    if (const auto& d = v.direct) {
-        out.sox[j] = d->origin.x, out.soy[j] = d->origin.y, out.soz[j] = d->origin.z;
-        out.sdx[j] = d->toLight.x, out.sdy[j] = d->toLight.y, out.sdz[j] = d->toLight.z;
-        out.shadowTMax[j] = d->tMax;
-        const Vec3f c = d->contribution;
-        out.directR[j] = c.x, out.directG[j] = c.y, out.directB[j] = c.z;
-    }
-    out.bounce[j] = v.bounce.has_value();
-    if (!v.bounce) return false;
-    const Vec3f weight = v.weight;
-    out.ox[j] = v.origin.x, out.oy[j] = v.origin.y, out.oz[j] = v.origin.z;
-    out.wx[j] = v.wi.x, out.wy[j] = v.wi.y, out.wz[j] = v.wi.z;
-    out.weightR[j] = weight.x, out.weightG[j] = weight.y, out.weightB[j] = weight.z;
-    out.pdf[j] = v.bounce->pdf;
-    return v.bounce->specular;
-}
-
-// A group's Lambertian vertices in its first lanes, the others after them;
-// returns how many are Lambertian.
-inline int lambertianFirst(const RenderScene& scene, const SurfaceInteraction* si, const int* paths,
-                           int live, int* lane) {
-    int lambertian = 0;
-    if (scene.allLambertian()) {
-        for (int j = 0; j < live; ++j) lane[j] = paths[j];
-        return live;
-    }
-    for (int j = 0; j < live; ++j)
-        if (scene.isLambertian(si[paths[j]].material)) lane[lambertian++] = paths[j];
-    for (int j = 0, other = lambertian; j < live; ++j)
-        if (!scene.isLambertian(si[paths[j]].material)) lane[other++] = paths[j];
-    return lambertian;
-}
-
-// One vertex of up to kBatchLanes live paths (groupPaths[j]): the Lambertian
-// ones' draws and one shadeDiffuseBatch, the others shaded one at a time
-// (shadeLaneAlone), then the group's shadow rays as one Embree packet,
-// Russian roulette, and its bounce rays as one packet, whose hits replace the
-// paths' vertices.
-template <Sampler S>
-void advanceBatchLanes(const RenderScene& scene, const int* groupPaths, int live, int depth,
-                       S& sampler, Vec2i pixel, int firstIndex, const IntegratorSettings& settings,
-                       BatchPaths& paths, bool* found, SurfaceInteraction* si,
-                       PathCounters& counters, Vec3f* L) {
-    const LightSet& lights = scene.lights();
-    // One area light sampled by area: the kernel samples it; otherwise each
-    // lane's light sample is drawn here, one at a time.
-    const AreaLight* onlyLight = lights.onlyAreaLight();
-    int lane[kBatchLanes], index[kBatchLanes];
-    const int lambertian = lambertianFirst(scene, si, groupPaths, live, lane);
-    for (int j = 0; j < live; ++j) index[j] = firstIndex + lane[j];
-    // The Lambertian paths' dimensions, one dimension for all of them at a time.
-    const int base = dims::bounceBase(depth, settings.firstBounce);
-    float uChoice[kBatchLanes] = {};
-    Vec2f uLight[kBatchLanes], uDirection[kBatchLanes];
-    const bool choice = lights.choiceUsesSample();
-    if (lambertian > 0)
-        drawVertexLanes(sampler, pixel, index, lambertian, base, choice, uChoice, uLight,
-                        uDirection);
-    counters.dimensions += uint64_t(lambertian) * (choice ? 5 : 4);
-    DiffuseBatchInput& in = paths.in;
-    DiffuseBatchOutput& out = paths.out;
-    for (int j = 0; j < lambertian; ++j) {
-        const int k = lane[j];
-        setBatchLane(in, j, si[k], paths.dir[k], scene.lambertianAlbedoAt(si[k]), uLight[j],
-                     uDirection[j]);
-        if (!onlyLight)
-            setBatchLightSample(in, j, lights.sample(si[k].p, si[k].ns, uChoice[j], uLight[j]));
-    }
-    if (lambertian > 0) shadeDiffuseBatch(onlyLight, scene.epsilon(), in, lambertian, out);
-    for (int j = 0; j < live; ++j) {
-        const int k = lane[j];
-        paths.specularBounce[k] =
-            j >= lambertian && shadeLaneAlone(scene, sampler, pixel, index[j], depth, settings,
-                                              si[k], paths.dir[k], j, out, counters);
-    }
-
-    bool blocked[kBatchLanes];
-    scene.occludedLanes(
-        {out.sox, out.soy, out.soz, out.sdx, out.sdy, out.sdz, out.shadowTMax, out.shadow, live},
-        blocked);
-    // Russian roulette's numbers are drawn only for the paths it can end;
-    // the other paths' fate is settled here.
-    int continues[kBatchLanes] = {};
-    float q[kBatchLanes];
-    int playing[kBatchLanes], playingIndex[kBatchLanes], players = 0;
-    for (int j = 0; j < live; ++j) {
-        const int k = lane[j];
-        if (out.shadow[j]) {
-            ++counters.shadowRays;
-            if (!blocked[j])
-                L[k] += paths.beta[k] * Vec3f(out.directR[j], out.directG[j], out.directB[j]);
-        }
-        paths.alive[k] = out.bounce[j] != 0;
-        if (!paths.alive[k]) continue;
-        paths.beta[k] *= Vec3f(out.weightR[j], out.weightG[j], out.weightB[j]);
-        paths.prevBsdfPdf[k] = out.pdf[j];
-        paths.prevPoint[k] = si[k].p;
-        paths.prevNormal[k] = si[k].ns;
-        paths.dir[k] = {out.wx[j], out.wy[j], out.wz[j]};
-        q[j] = terminationProbability(settings, depth, paths.beta[k]);
-        if (q[j] > 0) {
-            playing[players] = j, playingIndex[players++] = index[j];
-            continue;
-        }
-        paths.alive[k] = !isBlack(paths.beta[k]);
-        continues[j] = paths.alive[k];
-        counters.rays += uint64_t(paths.alive[k]);
-    }
-    if (players > 0) {
-        float u[kBatchLanes];
-        drawLanes1D(sampler, pixel, playingIndex, players, base + dims::kRoulette, u);
-        counters.dimensions += uint64_t(players);
-        for (int n = 0; n < players; ++n) {
-            const int j = playing[n], k = lane[j];
-            paths.beta[k] *= 1 / (1 - q[j]);
-            paths.alive[k] = u[n] >= q[j] && !isBlack(paths.beta[k]);
-            continues[j] = paths.alive[k];
-            counters.rays += uint64_t(paths.alive[k]);
-        }
-    }
-
-    scene.intersectLanes({out.ox, out.oy, out.oz, out.wx, out.wy, out.wz, nullptr, continues, live},
-                         lane, si, found);
-}
-
-// The paths of up to kBatchSamples consecutive samples of a pixel, traced
-// together: the same estimator as estimateRadiance, bit for bit, but depth by
-// depth the live paths are packed into groups of kBatchLanes — so that as
-// paths end the rest still fill whole packets — and each group's Lambertian
-// vertices are shaded as one shadeDiffuseBatch (the others one at a time),
-// its shadow rays and bounce rays each traced as one Embree packet.
-// A sampler's values are pure functions of (pixel, index, dimension, seed), so
-// the draws may be made in any order. On entry found[k] and si[k] hold camera
-// ray k's hit; they are the paths' working state, overwritten. L[k] receives
-// path k's radiance. (The camera rays' origins are not needed: the first
-// vertex's emission depends on the direction only, and later rays start at
-// the vertices.)
-template <Sampler S>
-void estimateRadianceBatch(const RenderScene& scene, const Vec3f* dirs, bool* found,
-                           SurfaceInteraction* si, int count, S& sampler, Vec2i pixel,
-                           int firstIndex, const IntegratorSettings& settings,
-                           PathCounters& counters, BatchPaths& paths, Vec3f* L) {
-    static_assert(kPacketWidth == kBatchLanes, "a packet's rays are one batch's lanes");
-    const LightSet& lights = scene.lights();
-    for (int k = 0; k < count; ++k) {
-        L[k] = Vec3f(0.0f), paths.beta[k] = Vec3f(1.0f), paths.dir[k] = dirs[k];
-        paths.prevPoint[k] = paths.prevNormal[k] = Vec3f(0.0f);
-        paths.prevBsdfPdf[k] = 0, paths.alive[k] = true, paths.specularBounce[k] = false;
-    }
-    for (int depth = 0;; ++depth) {
-        int lane[kBatchSamples], live = 0;
-        for (int k = 0; k < count; ++k) {
-            if (!paths.alive[k]) continue;
-            addEmission(lights, found[k], si[k], paths.dir[k], paths.beta[k],
-                        depth == 0 || paths.specularBounce[k], paths.prevBsdfPdf[k],
-                        paths.prevPoint[k], paths.prevNormal[k], L[k]);
-            paths.alive[k] = found[k] && depth != settings.maxDepth;
-            if (paths.alive[k]) lane[live++] = k;
-        }
-        if (live == 0) return;
-        for (int j0 = 0; j0 < live; j0 += kBatchLanes)
-            advanceBatchLanes(scene, lane + j0, std::min(kBatchLanes, live - j0), depth, sampler,
-                              pixel, firstIndex, settings, paths, found, si, counters, L);
-    }
 }
 
 }  // namespace pathlab

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/float_mode.h"
 #include "core/thread_annotations.h"
+#include "render/batched_paths.h"
 #include "render/camera_model.h"
 #include "render/camera_samples.h"
 #include "render/colour/spectral_paths.h"
@@ -23,6 +24,7 @@
 #include "render/pixel_filter.h"
 #include "render/running_sums.h"
 #include "sampling/registry.h"
+#include "spectral/rgb_spectrum_table.h"
 
 namespace pathlab {
 namespace {
@@ -145,17 +147,16 @@ void traceCameraPacket(const RenderScene& scene, const FrameSetup& frame, S& sam
     scene.intersectLanes({ox, oy, oz, dx, dy, dz, nullptr, active, count}, to, si, found);
 }
 
-// A batch of a pixel's samples: their camera rays, first hits and radiance,
-// and the batched integrator's paths. One per tile, reused pixel after pixel:
-// constructing it (≈ 10 KB, zeroed) for every pixel was the whole cost of a
-// 1-spp pass beyond its paths (≈ 90 ms of 140 at 512², two threads).
+// A batch of a pixel's samples: their camera rays, first hits and radiance.
+// One per tile, reused pixel after pixel, as the batched integrator keeps its
+// paths (batched_paths.h): constructing these ≈ 5 KB, zeroed, for every
+// pixel was a tenth of a 1-spp pass.
 struct PixelBatch {
     Vec3f origins[kBatchSamples], dirs[kBatchSamples];
     float weights[kBatchSamples];
     SurfaceInteraction first[kBatchSamples];
     bool found[kBatchSamples];
     Vec3f radiance[kBatchSamples];
-    BatchPaths paths;
 };
 
 // kWeighted: the filter's weights vary (Σ w·L / Σ w); otherwise every weight
@@ -198,7 +199,7 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
                                      radiance);
         else if (integrator.batchPaths)
             estimateRadianceBatch(scene, dirs, found, first, count, sampler, pixel, i0, integrator,
-                                  result.counters, batch.paths, radiance);
+                                  result.counters, radiance);
         else
             for (int k = 0; k < count; ++k)
                 radiance[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], first[k],
@@ -349,6 +350,12 @@ void validateRenderSettings(const RenderSettings& s) {
 
 RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     validateRenderSettings(settings);
+    // Spectral mode's RGB-to-spectrum table is read (or made) once per
+    // process, like the scene's acceleration structure, before the clock.
+    if (settings.spectral) {
+        checkSpectralSupport(scene.description());
+        spectral::defaultRgbToSpectrumTable();
+    }
     const auto start = std::chrono::steady_clock::now();
     const SceneDescription& desc = scene.description();
     // The full image the camera maps; the rendered image is its crop.

@@ -47,7 +47,14 @@ double cieZ(double lambdaNm) {
 }
 
 Vec3f cieXyzMatching(float lambdaNm) {
-    return {float(cieX(lambdaNm)), float(cieY(lambdaNm)), float(cieZ(lambdaNm))};
+    // interpolateCmf's arithmetic for the three tables, the interval and its
+    // fraction found once (the film converts every path's four wavelengths).
+    const double x = (lambdaNm - cie_data::kCmfFirst) / cie_data::kCmfStep;
+    if (!(x >= 0) || x > cie_data::kCmfCount - 1) return {};
+    const int i = std::min(int(x), cie_data::kCmfCount - 2);
+    const double t = x - i;
+    auto at = [&](const double* table) { return float((1 - t) * table[i] + t * table[i + 1]); };
+    return {at(cie_data::kCmfX), at(cie_data::kCmfY), at(cie_data::kCmfZ)};
 }
 
 double cieYIntegral() {

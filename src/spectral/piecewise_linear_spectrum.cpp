@@ -22,6 +22,24 @@ PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<double> lambdaNm,
                              std::to_string(lambda_[i]) + " nm follows " +
                              std::to_string(lambda_[i - 1]) + " nm)");
     }
+    if (lambda_.size() < 2) return;
+    const double step = lambda_[1] - lambda_[0];
+    for (size_t i = 0; i < lambda_.size(); ++i)
+        if (lambda_[i] != lambda_[0] + double(i) * step) return;
+    step_ = step;
+}
+
+size_t PiecewiseLinearSpectrum::upperKnot(double lambdaNm) const {
+    if (step_ == 0 || std::isnan(lambdaNm))
+        return size_t(std::upper_bound(lambda_.begin(), lambda_.end(), lambdaNm) - lambda_.begin());
+    // The grid's guess, moved to the first knot above λ: the same index as
+    // the binary search, so the same interpolation and the same bits (the
+    // spectral renderer samples the illuminant at every path's wavelengths).
+    const size_t n = lambda_.size();
+    size_t hi = std::min(size_t((lambdaNm - lambda_[0]) / step_) + 1, n);
+    while (hi > 0 && lambda_[hi - 1] > lambdaNm) --hi;
+    while (hi < n && lambda_[hi] <= lambdaNm) ++hi;
+    return hi;
 }
 
 PiecewiseLinearSpectrum PiecewiseLinearSpectrum::fromInterleaved(const std::vector<double>& pairs) {
@@ -38,8 +56,7 @@ PiecewiseLinearSpectrum PiecewiseLinearSpectrum::fromInterleaved(const std::vect
 
 double PiecewiseLinearSpectrum::operator()(double lambdaNm) const {
     if (lambda_.empty() || lambdaNm < lambda_.front() || lambdaNm > lambda_.back()) return 0;
-    const size_t hi =
-        size_t(std::upper_bound(lambda_.begin(), lambda_.end(), lambdaNm) - lambda_.begin());
+    const size_t hi = upperKnot(lambdaNm);
     if (hi >= lambda_.size()) return value_.back();
     const size_t lo = hi - 1;
     const double t = (lambdaNm - lambda_[lo]) / (lambda_[hi] - lambda_[lo]);

@@ -33,7 +33,13 @@ class PiecewiseLinearSpectrum {
     const std::vector<double>& values() const { return value_; }
 
   private:
+    // The interval of λ: hi, the first knot above λ (std::upper_bound's).
+    size_t upperKnot(double lambdaNm) const;
     std::vector<double> lambda_, value_;
+    // Knots on a uniform grid (λ_i = λ_0 + i·step exactly, as the tabulated
+    // illuminants are): the interval is found from the grid index, then
+    // checked against the knots, rather than by binary search; 0 otherwise.
+    double step_ = 0;
 };
 
 }  // namespace pathlab::spectral

@@ -19,16 +19,6 @@ SigmoidPolynomial rgbToSigmoid(Vec3f rgb) {
     return defaultRgbToSpectrumTable().lookup(clamped);
 }
 
-namespace {
-
-SampledSpectrum sampleSigmoid(const SigmoidPolynomial& s, const SampledWavelengths& w) {
-    SampledSpectrum out;
-    for (int i = 0; i < kSpectrumSamples; ++i) out[i] = s(w.lambda(i));
-    return out;
-}
-
-}  // namespace
-
 SampledSpectrum albedoSpectrum(Vec3f rgb, const SampledWavelengths& w) {
     return sampleSigmoid(rgbToSigmoid(rgb), w);
 }

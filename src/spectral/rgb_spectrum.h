@@ -7,6 +7,10 @@
 // a table made by pathlab's own optimiser (rgb_spectrum_table.h).
 #pragma once
 
+#include <immintrin.h>
+
+#include <cstring>
+
 #include "core/math.h"
 #include "spectral/sampled_wavelengths.h"
 
@@ -24,6 +28,27 @@ struct SigmoidPolynomial {
     // polynomial's vertex (S is increasing).
     float maxValue() const;
 };
+
+// The polynomial at a path's four wavelengths: operator() lane by lane, the
+// same IEEE operations in the same order, four at a time (SSE's square root
+// and division round as the scalar ones do), so the same bits. A path meets a
+// reflectance at every vertex; scalar, the four dependent square roots and
+// divisions were a latency chain.
+inline SampledSpectrum sampleSigmoid(const SigmoidPolynomial& s, const SampledWavelengths& w) {
+    static_assert(kSpectrumSamples == 4, "one SSE register of wavelengths");
+    using F = float __attribute__((vector_size(16)));
+    using I = int __attribute__((vector_size(16)));
+    const F lambda{w.lambda(0), w.lambda(1), w.lambda(2), w.lambda(3)};
+    const F x = (s.c0 * lambda + s.c1) * lambda + s.c2;
+    const F value = 0.5f + x / (2 * F(_mm_sqrt_ps(__m128(1 + x * x))));
+    const F infinity = F{} + __builtin_inff();
+    const I isInf = (x == infinity) | (x == -infinity);
+    const F limit = x > 0 ? F{} + 1.0f : F{};  // S(±∞)
+    const F out = isInf ? limit : value;
+    SampledSpectrum spectrum;
+    std::memcpy(spectrum.v.data(), &out, sizeof out);
+    return spectrum;
+}
 
 // The sigmoid polynomial of a linear sRGB reflectance; rgb clamped to [0,1]³.
 SigmoidPolynomial rgbToSigmoid(Vec3f rgb);

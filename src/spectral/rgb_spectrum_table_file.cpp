@@ -5,6 +5,7 @@
 // The fingerprint hashes the format version and the CIE data the optimiser
 // used, so new colour-matching or illuminant data make a new table. A file
 // that is short, long, corrupt or of another fingerprint is rebuilt.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -96,11 +97,14 @@ std::shared_ptr<RgbToSpectrumTable> parse(std::string_view bytes, int resolution
 std::shared_ptr<const RgbToSpectrumTable> loadOrCreateRgbToSpectrumTable(
     const std::filesystem::path& file, int resolution) {
     {
-        std::ifstream in(file, std::ios::binary);
+        // Read whole (9 MB at n = 64: character by character, the reading was
+        // most of a spectral render's start-up).
+        std::ifstream in(file, std::ios::binary | std::ios::ate);
         if (in) {
-            const std::string bytes((std::istreambuf_iterator<char>(in)),
-                                    std::istreambuf_iterator<char>());
-            if (auto t = parse(bytes, resolution)) return t;
+            std::string bytes(size_t(std::max<std::streamoff>(in.tellg(), 0)), '\0');
+            in.seekg(0);
+            if (in.read(bytes.data(), std::streamsize(bytes.size())))
+                if (auto t = parse(bytes, resolution)) return t;
         }
     }
     auto t = std::make_shared<const RgbToSpectrumTable>(makeRgbToSpectrumTable(resolution));

@@ -10,6 +10,8 @@
 //
 // A context provides:
 //   using Colour                             — Vec3f or spectral::SampledSpectrum
+//   kChannels                                — its number of floats, each
+//                                              computed alike (batched_paths.h)
 //   Colour reflectance(Vec3f rgb)            — a bounded reflectance in [0, 1]
 //   Colour emission(Vec3f rgb)               — emitted radiance (any rgb ≥ 0)
 //   Colour f(const Bsdf&, Vec3f wo, Vec3f wi) — the BSDF's value (bsdf.h conventions)
@@ -27,6 +29,7 @@ namespace pathlab {
 struct RgbContext {
     using Colour = Vec3f;
     static constexpr bool kSpectral = false;
+    static constexpr int kChannels = 3;
     Vec3f reflectance(Vec3f rgb) const { return rgb; }
     Vec3f emission(Vec3f rgb) const { return rgb; }
     Vec3f f(const Bsdf& bsdf, Vec3f wo, Vec3f wi) const { return bsdf.f(wo, wi); }

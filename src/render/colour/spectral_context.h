@@ -35,7 +35,7 @@ spectral::SampledSpectrum spectralSampledF(const Bsdf& bsdf, Vec3f wo, const Bsd
 
 // The last few colours' sigmoid polynomials (rgbToSigmoid), so that a
 // scene's handful of constant colours are looked up in the coefficient table
-// once per batch of a pixel's paths rather than at every vertex. Exact:
+// once per thread (spectral_paths.h) rather than at every vertex. Exact:
 // a hit returns what rgbToSigmoid returned for the same bits.
 class SigmoidCache {
   public:
@@ -60,6 +60,9 @@ class SpectralContext {
   public:
     using Colour = spectral::SampledSpectrum;
     static constexpr bool kSpectral = true;
+    static constexpr int kChannels = spectral::kSpectrumSamples;
+    // Unset, to be assigned (an array of a batch's paths' contexts).
+    SpectralContext() = default;
     // `cache` outlives the context; the illuminant is sampled once per path.
     SpectralContext(const spectral::SampledWavelengths& lambda, SigmoidCache& cache)
         : lambda_(lambda),
@@ -87,13 +90,11 @@ class SpectralContext {
 
   private:
     Colour sampled(const spectral::SigmoidPolynomial& poly) const {
-        Colour out;
-        for (int i = 0; i < spectral::kSpectrumSamples; ++i) out[i] = poly(lambda_.lambda(i));
-        return out;
+        return spectral::sampleSigmoid(poly, lambda_);
     }
     spectral::SampledWavelengths lambda_;
     Colour illuminant_;  // the colour space's, D65, at lambda_
-    SigmoidCache* cache_;
+    SigmoidCache* cache_ = nullptr;
 };
 
 }  // namespace pathlab

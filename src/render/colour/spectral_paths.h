@@ -5,12 +5,14 @@
 // number). That dimension is the first after the camera's — 2, or 4 with a
 // thin lens — and every path vertex's block moves up by one behind it
 // (docs/rendering.md, "Dimension layout"); RGB mode's layout is unchanged.
-// The path is the scalar integrator's (estimateRadiance) with the spectral
-// colour context, and its radiance becomes linear sRGB through the CIE 1931
+// The paths are RGB mode's — batched (estimateRadianceBatch) or, with
+// batchPaths off, one at a time (estimateRadiance) — with spectral colour
+// contexts, and each path's radiance becomes linear sRGB through the CIE 1931
 // matching functions before the film sees it, so film, metrics and study are
 // those of RGB mode.
 #pragma once
 
+#include "render/batched_paths.h"
 #include "render/colour/spectral_context.h"
 #include "render/path_integrator.h"
 
@@ -35,24 +37,40 @@ spectral::SampledWavelengths sampleWavelengths(S& sampler, Vec2i pixel, int samp
 }
 
 // Radiance, as linear sRGB, of `count` consecutive samples of a pixel whose
-// camera rays have been traced (found, si), as estimateRadianceBatch's
-// arguments; settings.firstBounce is spectralFirstBounce.
+// camera rays have been traced (found, si: as estimateRadianceBatch's
+// arguments, overwritten when batched); settings.firstBounce is
+// spectralFirstBounce. Each sample's wavelengths are sampled first (one call
+// per sample), then its path is traced with its own spectral context: the
+// batch's paths together, as RGB mode's, unless settings.batchPaths is off.
+// The batched paths' values are the scalar integrator's bit for bit.
 template <Sampler S>
 void estimateSpectralRadiance(const RenderScene& scene, const Vec3f* origins, const Vec3f* dirs,
-                              const bool* found, const SurfaceInteraction* si, int count,
-                              S& sampler, Vec2i pixel, int firstIndex,
-                              const IntegratorSettings& settings, int wavelengthDimension,
-                              PathCounters& counters, Vec3f* L) {
-    SigmoidCache cache;
+                              bool* found, SurfaceInteraction* si, int count, S& sampler,
+                              Vec2i pixel, int firstIndex, const IntegratorSettings& settings,
+                              int wavelengthDimension, PathCounters& counters, Vec3f* L) {
+    static_assert(SpectralContext::kChannels <= kMaxBatchChannels);
+    // The thread's cache outlives the batch, so that a scene's few constant
+    // colours are looked up in the coefficient table once per thread rather
+    // than once per batch (a batch is a pixel's samples: 16 paths at 16 spp).
+    // Exact, so which thread rendered a pixel changes no bit.
+    static thread_local SigmoidCache cache;
+    SpectralContext ctx[kBatchSamples];
     for (int k = 0; k < count; ++k) {
-        const SpectralContext ctx(
+        ctx[k] = SpectralContext(
             sampleWavelengths(sampler, pixel, firstIndex + k, wavelengthDimension), cache);
         ++counters.dimensions;
-        const spectral::SampledSpectrum radiance =
-            estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler, pixel,
-                             firstIndex + k, settings, counters, ctx);
-        L[k] = ctx.toRgb(radiance);
     }
+    spectral::SampledSpectrum radiance[kBatchSamples];
+    if (settings.batchPaths) {
+        const SpectralContext* contexts = ctx;
+        estimateRadianceBatch(scene, dirs, found, si, count, sampler, pixel, firstIndex, settings,
+                              counters, radiance, contexts);
+    } else {
+        for (int k = 0; k < count; ++k)
+            radiance[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler,
+                                           pixel, firstIndex + k, settings, counters, ctx[k]);
+    }
+    for (int k = 0; k < count; ++k) L[k] = ctx[k].toRgb(radiance[k]);
 }
 
 // Throws InputError naming the first of the scene's features that spectral
