@@ -9,29 +9,14 @@
 #include "render/renderer.h"
 #include "scene/loader.h"
 #include "scene_test_util.h"
+#include "spectral_test_util.h"
 #include "study/spec.h"
 
 namespace pathlab {
 namespace {
 
-// Each channel's image mean and the standard error of that mean (the pixels'
-// estimates are independent).
-struct ChannelMeans {
-    double mean[3] = {}, standardError[3] = {};
-};
-ChannelMeans channelMeans(const RenderOutput& out) {
-    ChannelMeans m;
-    const size_t pixels = size_t(out.image.width) * size_t(out.image.height);
-    for (int c = 0; c < 3; ++c) {
-        double sum = 0, var = 0;
-        for (size_t i = 0; i < pixels; ++i)
-            sum += out.image.rgb[3 * i + size_t(c)],
-                var += out.varianceOfMean.rgb[3 * i + size_t(c)];
-        m.mean[c] = sum / double(pixels);
-        m.standardError[c] = std::sqrt(var) / double(pixels);
-    }
-    return m;
-}
+using test::channelMeans;
+using test::ChannelMeans;
 
 TEST(SpectralFurnace, GreyEnclosureUnderWhiteLightStaysWhite) {
     // White light is the colour space's illuminant (D65) and the film is
@@ -125,17 +110,6 @@ TEST(SpectralRender, WavelengthsComeFromTheirOwnDimension) {
     s.spectral = true;
     const RenderOutput spectral = render(scene, s);
     EXPECT_EQ(spectral.stats.dimensions, rgb.stats.dimensions + spectral.stats.paths);
-}
-
-TEST(SpectralRender, LayeredMaterialsAreNamedAndRejected) {
-    SceneDescription desc = furnaceCube(0.5f, 1.0f);
-    desc.materials[0].type = MaterialType::CoatedDiffuse;
-    const RenderScene scene(std::move(desc));
-    RenderSettings s;
-    s.samplesPerPixel = 1;
-    s.spectral = true;
-    const std::string message = test::inputErrorOf([&] { render(scene, s); });
-    EXPECT_NE(message.find("coateddiffuse"), std::string::npos) << message;
 }
 
 TEST(SpectralStudySpec, SpectralKeyParsesAndRoundTrips) {

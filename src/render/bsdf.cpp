@@ -1,6 +1,5 @@
 #include "render/bsdf.h"
 
-#include "core/hash.h"
 #include "render/layered/layered_bsdf.h"
 #include "render/sampling_routines.h"
 #include "render/transmission_lobes.h"
@@ -128,17 +127,6 @@ Bsdf Bsdf::layered(const LayeredBsdf* layered) {
     if (!b.isAnisotropic() && layered->base().isAnisotropic()) b.alpha_ = 0, b.alphaY_ = 1;
     return b;
 }
-
-namespace {
-// pbrt-v4's seeding of a layered walk without a sampler: a hash of the
-// directions it is asked about.
-PcgWalkNumbers walkFromDirections(Vec3f a, Vec3f b, float c = 0) {
-    return PcgWalkNumbers(hashValues(std::bit_cast<uint32_t>(a.x), std::bit_cast<uint32_t>(a.y),
-                                     std::bit_cast<uint32_t>(a.z), std::bit_cast<uint32_t>(b.x),
-                                     std::bit_cast<uint32_t>(b.y), std::bit_cast<uint32_t>(b.z),
-                                     std::bit_cast<uint32_t>(c)));
-}
-}  // namespace
 
 Vec3f Bsdf::fNonDiffuse(Vec3f wo, Vec3f wi) const {
     if (kind_ == BsdfKind::Layered) {

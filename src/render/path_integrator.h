@@ -101,11 +101,9 @@ std::optional<DirectSampleOf<typename Ctx::Colour>> sampleDirect(
     const auto ls = scene.lights().sample(si.p, si.ns, uChoice, uLight);
     if (!ls) return std::nullopt;
     const Vec3f wi = frame.toLocal(ls->wi);
-    Colour f;
-    if constexpr (Ctx::kSpectral)
-        f = ctx.f(bsdf, wo, wi) * absCosTheta(wi);  // layered BSDFs are RGB only
-    else
-        f = (walks.f ? bsdf.layered()->f(wo, wi, *walks.f) : bsdf.f(wo, wi)) * absCosTheta(wi);
+    const Colour f =
+        (walks.f ? ctx.layeredF(*bsdf.layered(), wo, wi, *walks.f) : ctx.f(bsdf, wo, wi)) *
+        absCosTheta(wi);
     if (isBlack(f)) return std::nullopt;
     // The shadow ray runs from the nudged origin to the light point itself, as
     // pbrt-v4's SpawnRayTo: with the unnormalised difference as its direction,
@@ -222,45 +220,47 @@ SamplerWalkNumbers<WalkDraw<S>> walkNumbers(VertexDimensions<S>& draws, dims::Wa
 }
 
 // shadeVertex at a layered BSDF, whose walks draw from the vertex's layered
-// block. Its sample's pdf is only proportional to the walk's density (as
+// block, in either colour: the walks draw the same dimensions in both.
+// Its sample's pdf is only proportional to the walk's density (as
 // pbrt-v4's PathIntegrator, multiple importance sampling takes the pdf
 // estimate instead): f is rescaled with it, which leaves the weight as it was.
-template <Sampler S>
-VertexShading shadeLayeredVertex(const RenderScene& scene, VertexDimensions<S>& draws,
-                                 const SurfaceInteraction& si, const Bsdf& bsdf, const Frame& frame,
-                                 Vec3f wo) {
+template <Sampler S, class Ctx>
+VertexShadingOf<typename Ctx::Colour> shadeLayeredVertex(const RenderScene& scene,
+                                                         VertexDimensions<S>& draws,
+                                                         const SurfaceInteraction& si,
+                                                         const Bsdf& bsdf, const Frame& frame,
+                                                         Vec3f wo, const Ctx& ctx) {
     const LightSet& lights = scene.lights();
     const LayeredBsdf& layered = *bsdf.layered();
-    VertexShading v;
+    VertexShadingOf<typename Ctx::Colour> v;
     if (!bsdf.isSpecular()) {
         const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;
         const Vec2f uLight = draws.get2D(dims::kLightPoint);
         auto walkF = walkNumbers(draws, dims::Walk::LightF);
         auto walkPdf = walkNumbers(draws, dims::Walk::LightPdf);
         v.lightSampled = true;
-        v.direct =
-            sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight, LightWalks{&walkF, &walkPdf});
+        v.direct = sampleDirect(scene, si, frame, bsdf, wo, uChoice, uLight,
+                                LightWalks{&walkF, &walkPdf}, ctx);
     }
     const float uLobe = draws.get1D(dims::kBsdfLobe);
     const Vec2f uDirection = draws.get2D(dims::kBsdfDirection);
     auto walk = walkNumbers(draws, dims::Walk::Sample);
-    v.bounce = layered.sample(wo, uLobe, uDirection, walk);
-    if (v.bounce && v.bounce->pdfIsProportional && !v.bounce->specular) {
+    auto s = ctx.layeredSample(layered, wo, uLobe, uDirection, walk);
+    if (!s) return v;
+    if (s->sample.pdfIsProportional && !s->sample.specular) {
         auto walkPdf = walkNumbers(draws, dims::Walk::SampledPdf);
-        const float pdf = layered.pdf(wo, v.bounce->wi, walkPdf);
-        v.bounce->f *= pdf / v.bounce->pdf;
-        v.bounce->pdf = pdf;
+        const float pdf = layered.pdf(wo, s->sample.wi, walkPdf);
+        s->f *= pdf / s->sample.pdf;
+        s->sample.pdf = pdf;
     }
-    if (v.bounce) {
-        v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
-        v.weight = v.bounce->weight();
-    }
+    if constexpr (!Ctx::kSpectral) s->sample.f = s->f;
+    v.bounce = s->sample;
+    v.wi = frame.toWorld(v.bounce->wi), v.origin = scene.offsetOrigin(si, v.wi);
+    v.weight = s->f * (absCosTheta(v.bounce->wi) / v.bounce->pdf);
     return v;
 }
 
 // A vertex's shading in the colour of context ctx (colour/rgb_context.h).
-// Layered BSDFs are shaded in RGB only (renderer.cpp rejects them in
-// spectral mode before rendering).
 template <Sampler S, class Ctx = RgbContext>
 VertexShadingOf<typename Ctx::Colour> shadeVertex(const RenderScene& scene,
                                                   VertexDimensions<S>& draws,
@@ -270,8 +270,7 @@ VertexShadingOf<typename Ctx::Colour> shadeVertex(const RenderScene& scene,
     const Bsdf bsdf = scene.bsdfAt(si, dir);
     const Frame frame = shadingFrame(bsdf, si.ns);
     const Vec3f wo = frame.toLocal(-dir);
-    if constexpr (!Ctx::kSpectral)
-        if (bsdf.layered()) return shadeLayeredVertex(scene, draws, si, bsdf, frame, wo);
+    if (bsdf.layered()) return shadeLayeredVertex(scene, draws, si, bsdf, frame, wo, ctx);
     VertexShadingOf<typename Ctx::Colour> v;
     if (!bsdf.isSpecular()) {
         const float uChoice = lights.choiceUsesSample() ? draws.get1D(dims::kLightChoice) : 0;

@@ -369,7 +369,6 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
     const bool lens = frame.camera.hasLens();
     integrator.firstBounce = dims::firstBounce(lens);
     if (settings.spectral) {
-        checkSpectralSupport(desc);
         integrator.spectral = true;
         integrator.wavelengthDimension = dims::wavelength(lens);
         integrator.firstBounce = dims::spectralFirstBounce(lens);

@@ -18,11 +18,18 @@
 //   Colour sampledF(const Bsdf&, Vec3f wo, const BsdfSample&) — f of a sample drawn
 //                                               by Bsdf::sample (its direction and pdf
 //                                               do not depend on the colour)
+//   Colour layeredF(const LayeredBsdf&, Vec3f wo, Vec3f wi, WalkNumbers&) — a
+//                                               layered BSDF's f from one walk
+//   optional<LayeredSampleOf<Colour>> layeredSample(const LayeredBsdf&, Vec3f wo,
+//                                               float uc, Vec2f u, WalkNumbers&)
 //   Vec3f toRgb(const Colour&)               — the path's radiance as linear sRGB
 #pragma once
 
+#include <optional>
+
 #include "core/math.h"
 #include "render/bsdf.h"
+#include "render/layered/layered_bsdf.h"
 
 namespace pathlab {
 
@@ -34,6 +41,15 @@ struct RgbContext {
     Vec3f emission(Vec3f rgb) const { return rgb; }
     Vec3f f(const Bsdf& bsdf, Vec3f wo, Vec3f wi) const { return bsdf.f(wo, wi); }
     Vec3f sampledF(const Bsdf&, Vec3f, const BsdfSample& s) const { return s.f; }
+    Vec3f layeredF(const LayeredBsdf& l, Vec3f wo, Vec3f wi, WalkNumbers& r) const {
+        return l.f(wo, wi, r);
+    }
+    std::optional<LayeredSampleOf<Vec3f>> layeredSample(const LayeredBsdf& l, Vec3f wo, float uc,
+                                                        Vec2f u, WalkNumbers& r) const {
+        const auto s = l.sample(wo, uc, u, r);
+        if (!s) return std::nullopt;
+        return LayeredSampleOf<Vec3f>{*s, s->f};
+    }
     Vec3f toRgb(Vec3f L) const { return L; }
 };
 

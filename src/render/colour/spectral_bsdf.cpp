@@ -32,10 +32,13 @@ SampledSpectrum spectralBsdfF(const Bsdf& bsdf, Vec3f wo, Vec3f wi, const Spectr
             return upsampled(bsdf.f(wo, wi), ctx);
         case BsdfKind::Dielectric:  // colourless for a constant index
             return SampledSpectrum(bsdf.f(wo, wi).x);
+        case BsdfKind::Layered: {  // a walk seeded by the directions, as Bsdf::f's
+            auto r = walkFromDirections(wo, wi);
+            return ctx.layeredF(*bsdf.layered(), wo, wi, r);
+        }
         case BsdfKind::Mirror:
         case BsdfKind::ThinDielectric:
         case BsdfKind::PassThrough:  // delta lobes only
-        case BsdfKind::Layered:      // not in spectral mode (spectral_support.cpp)
             break;
     }
     return SampledSpectrum(0.0f);
@@ -55,7 +58,7 @@ SampledSpectrum spectralSampledF(const Bsdf& bsdf, Vec3f, const BsdfSample& s,
         case BsdfKind::ThinDielectric:
         case BsdfKind::PassThrough:  // colourless for a constant index
             return SampledSpectrum(s.f.x);
-        case BsdfKind::Layered:  // not in spectral mode (spectral_support.cpp)
+        case BsdfKind::Layered:  // sampled by layeredSample, which gives f with the sample
             break;
     }
     return SampledSpectrum(0.0f);

@@ -12,8 +12,11 @@
 // converted where the integrator receives it.
 #pragma once
 
+#include <optional>
+
 #include "core/math.h"
 #include "render/bsdf.h"
+#include "render/layered/layered_bsdf.h"
 #include "spectral/colour_space.h"
 #include "spectral/film_xyz.h"
 #include "spectral/piecewise_linear_spectrum.h"
@@ -25,13 +28,19 @@ namespace pathlab {
 
 class SpectralContext;
 
-// Spectral values of an RGB-parameterised BSDF (spectral_bsdf.cpp): f(wo, wi),
-// and f for a sample Bsdf::sample drew (whose direction and pdf are those of
-// every wavelength: the indices of refraction are constant).
+// Spectral values of a BSDF (spectral_bsdf.cpp): f(wo, wi), and f for a
+// sample Bsdf::sample drew (whose direction and pdf are those of every
+// wavelength: the indices of refraction are constant).
 spectral::SampledSpectrum spectralBsdfF(const Bsdf& bsdf, Vec3f wo, Vec3f wi,
                                         const SpectralContext& ctx);
 spectral::SampledSpectrum spectralSampledF(const Bsdf& bsdf, Vec3f wo, const BsdfSample& s,
                                            const SpectralContext& ctx);
+// A layered BSDF's walks carrying spectra (spectral_layered.cpp).
+spectral::SampledSpectrum spectralLayeredF(const LayeredBsdf& layered, Vec3f wo, Vec3f wi,
+                                           WalkNumbers& r, const SpectralContext& ctx);
+std::optional<LayeredSampleOf<spectral::SampledSpectrum>> spectralLayeredSample(
+    const LayeredBsdf& layered, Vec3f wo, float uc, Vec2f u, WalkNumbers& r,
+    const SpectralContext& ctx);
 
 // The last few colours' sigmoid polynomials (rgbToSigmoid), so that a
 // scene's handful of constant colours are looked up in the coefficient table
@@ -84,6 +93,13 @@ class SpectralContext {
     }
     Colour sampledF(const Bsdf& bsdf, Vec3f wo, const BsdfSample& s) const {
         return spectralSampledF(bsdf, wo, s, *this);
+    }
+    Colour layeredF(const LayeredBsdf& l, Vec3f wo, Vec3f wi, WalkNumbers& r) const {
+        return spectralLayeredF(l, wo, wi, r, *this);
+    }
+    std::optional<LayeredSampleOf<Colour>> layeredSample(const LayeredBsdf& l, Vec3f wo, float uc,
+                                                         Vec2f u, WalkNumbers& r) const {
+        return spectralLayeredSample(l, wo, uc, u, r, *this);
     }
     Vec3f toRgb(const Colour& L) const { return spectral::spectrumToLinearSrgb(L, lambda_); }
     const spectral::SampledWavelengths& wavelengths() const { return lambda_; }

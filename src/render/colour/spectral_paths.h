@@ -73,8 +73,4 @@ void estimateSpectralRadiance(const RenderScene& scene, const Vec3f* origins, co
     for (int k = 0; k < count; ++k) L[k] = ctx[k].toRgb(radiance[k]);
 }
 
-// Throws InputError naming the first of the scene's features that spectral
-// mode does not render yet (spectral_support.cpp).
-void checkSpectralSupport(const SceneDescription& scene);
-
 }  // namespace pathlab

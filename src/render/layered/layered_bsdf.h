@@ -23,6 +23,14 @@
 
 namespace pathlab {
 
+// A sample of the layered BSDF in the colour a path carries: the direction,
+// pdf and flags of `sample` (whose f is not set), and f in that colour.
+template <class Colour>
+struct LayeredSampleOf {
+    BsdfSample sample;
+    Colour f;
+};
+
 struct LayerParameters {
     float thickness = 0.01f;
     Vec3f albedo{0.0f};  // of the medium between the layers; black: no scattering
@@ -44,6 +52,18 @@ class LayeredBsdf {
     // (the vertex's lobe and direction dimensions); the walk draws the rest.
     std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u, WalkNumbers& r) const;
 
+    // f and sample in another colour than RGB (layered_walk.h): `colours`
+    // gives the medium's albedo and the base's values in that colour, and
+    // turns the coating's colourless values into it. The walk — its
+    // directions, its densities and the numbers it draws from r — is the
+    // same as in RGB, which is their instance with RgbLayerColours.
+    template <class Colours>
+    typename Colours::Colour fIn(Vec3f wo, Vec3f wi, WalkNumbers& r, const Colours& colours) const;
+    template <class Colours>
+    std::optional<LayeredSampleOf<typename Colours::Colour>> sampleIn(Vec3f wo, float uc, Vec2f u,
+                                                                      WalkNumbers& r,
+                                                                      const Colours& colours) const;
+
     const DielectricInterface& coating() const { return top_; }
     const Bsdf& base() const { return bottom_; }
     const LayerParameters& parameters() const { return params_; }
@@ -51,8 +71,9 @@ class LayeredBsdf {
   private:
     float transmittance(float dz, Vec3f w) const;
     float connectionPdf(Vec3f wi, Vec3f w) const;
-    Vec3f walkF(Vec3f wo, Vec3f wi, const BsdfSample& wos, const BsdfSample& wis,
-                WalkNumbers& r) const;
+    template <class Colours>
+    typename Colours::Colour walkF(Vec3f wi, const BsdfSample& wos, const BsdfSample& wis,
+                                   WalkNumbers& r, const Colours& colours) const;
     float pdfThreeSegments(Vec3f wo, Vec3f wi, WalkNumbers& r) const;
 
     DielectricInterface top_;

@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "core/hash.h"
+#include "core/math.h"
 #include "core/rng.h"
 
 namespace pathlab {
@@ -32,6 +33,15 @@ class PcgWalkNumbers final : public WalkNumbers {
   private:
     Pcg32 rng_;
 };
+
+// pbrt-v4's seeding of a layered walk without a sampler: a hash of the
+// directions it is asked about (and of c, a third number).
+inline PcgWalkNumbers walkFromDirections(Vec3f a, Vec3f b, float c = 0) {
+    return PcgWalkNumbers(hashValues(std::bit_cast<uint32_t>(a.x), std::bit_cast<uint32_t>(a.y),
+                                     std::bit_cast<uint32_t>(a.z), std::bit_cast<uint32_t>(b.x),
+                                     std::bit_cast<uint32_t>(b.y), std::bit_cast<uint32_t>(b.z),
+                                     std::bit_cast<uint32_t>(c)));
+}
 
 // How many numbers of one walk come from the sampler.
 inline constexpr int kWalkSamplerDimensions = 16;
