@@ -297,6 +297,10 @@ void validateRenderSettings(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 4096)
         throw InputError("threads must be between 0 (all cores) and 4096, got " +
                          std::to_string(s.threads));
+    if (s.wavelengths != spectral::WavelengthSampling::Visible && !s.spectral)
+        throw InputError(std::string("wavelength sampling '") +
+                         spectral::wavelengthSamplingName(s.wavelengths) +
+                         "' needs spectral mode (--spectral)");
     const SamplerInfo& info = samplerInfo(s.sampler);
     int previous = 0;
     for (int n : s.prefixSpp) {
@@ -349,6 +353,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         integrator.spectral = true;
         integrator.wavelengthDimension = dims::wavelength(lens);
         integrator.firstBounce = dims::spectralFirstBounce(lens);
+        integrator.wavelengths = settings.wavelengths;
     }
 
     const PixelBounds& b = frame.bounds;

@@ -26,12 +26,14 @@ constexpr int spectralFirstBounce(bool lens) {
 }
 }  // namespace dims
 
-// The sample's wavelengths from its wavelength dimension.
+// The sample's wavelengths from its wavelength dimension: pbrt-v4's visible
+// density by default, or hero-wavelength sampling (the same one dimension).
 template <Sampler S>
 spectral::SampledWavelengths sampleWavelengths(S& sampler, Vec2i pixel, int sampleIndex,
-                                               int wavelengthDimension) {
+                                               int wavelengthDimension,
+                                               spectral::WavelengthSampling mode) {
     sampler.startPixelSample(pixel, sampleIndex, wavelengthDimension);
-    return spectral::SampledWavelengths::sampleVisible(sampler.get1D());
+    return spectral::SampledWavelengths::sample(mode, sampler.get1D());
 }
 
 // Radiance, as linear sRGB, of `count` consecutive samples of a pixel whose
@@ -45,8 +47,9 @@ void estimateSpectralRadiance(const RenderScene& scene, const Vec3f* origins, co
                               PathCounters& counters, Vec3f* L) {
     SigmoidCache cache;
     for (int k = 0; k < count; ++k) {
-        const SpectralContext ctx(
-            sampleWavelengths(sampler, pixel, firstIndex + k, wavelengthDimension), cache);
+        const SpectralContext ctx(sampleWavelengths(sampler, pixel, firstIndex + k,
+                                                    wavelengthDimension, settings.wavelengths),
+                                  cache);
         ++counters.dimensions;
         const spectral::SampledSpectrum radiance =
             estimateRadiance(scene, origins[k], dirs[k], found[k], si[k], sampler, pixel,
