@@ -22,6 +22,7 @@
 #include "render/pixel_filter.h"
 #include "render/running_sums.h"
 #include "sampling/registry.h"
+#include "spectral/white_balance.h"
 
 namespace pathlab {
 namespace {
@@ -59,6 +60,7 @@ struct FrameSetup {
     FilterSampler filter;
     PixelBounds bounds;
     float scale;
+    spectral::RgbBalance balance;  // the film's white balance, per sample
     // A pixel's camera rays all start at one point (a pinhole): Embree traces
     // them as one coherent packet from it.
     bool sharedOrigin;
@@ -71,8 +73,12 @@ FrameSetup makeFrame(const SceneDescription& desc, Vec2i resolution) {
         throw InputError("film scale must be positive, got " + std::to_string(desc.film.scale));
     CameraModel camera(desc.camera, resolution);
     const bool shared = camera.isPinhole() || camera.projective().sharedOrigin();
-    return FrameSetup{std::move(camera), FilterSampler(desc.film.filter),
-                      filmPixelBounds(desc.film, resolution), desc.film.scale, shared};
+    return FrameSetup{std::move(camera),
+                      FilterSampler(desc.film.filter),
+                      filmPixelBounds(desc.film, resolution),
+                      desc.film.scale,
+                      spectral::linearSrgbWhiteBalance(desc.film.whiteBalance),
+                      shared};
 }
 
 // Mean and variance of the mean of the first n samples, from running sums,
@@ -188,7 +194,7 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
                 radiance[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], first[k],
                                                sampler, pixel, i0 + k, integrator, result.counters);
         for (int k = 0; k < count; ++k) {
-            Vec3f L = radiance[k];
+            Vec3f L = frame.balance.identity ? radiance[k] : frame.balance(radiance[k]);
             if (!isFinite(L)) {  // never let a NaN/Inf reach the image
                 ++nonFinite;
                 L = Vec3f(0.0f);
