@@ -20,6 +20,7 @@ struct RenderOptions {
     bool noRoulette = false;
     bool solidAngleLights = false;
     std::string lightSampler;  // "": the scene file's choice, else power
+    std::string wavelengths = "visible";
     bool lenient = false;
     // Given on the command line? Otherwise a scene file's own choice (pbrt-v4's
     // Sampler and Integrator directives) applies.
@@ -30,6 +31,8 @@ struct RenderOptions {
 // The settings from the options' values, validated.
 void settle(RenderOptions& o) {
     o.values.russianRoulette = !o.noRoulette;
+    // Before the whole is validated, which refuses hero without --spectral.
+    o.settings.wavelengths = spectral::parseWavelengthSampling(o.wavelengths, "--wavelengths");
     settleRenderSettings(o.values, cliRenderOptionNames(), o.settings);
     parseLightSelection(o.lightSampler, "--light-sampler");
 }
@@ -98,6 +101,10 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_flag("--spectral", opts->settings.spectral,
                   "Carry four sampled wavelengths per path instead of RGB (pbrt-v4's spectral "
                   "rendering; the image is linear sRGB either way)");
+    cmd->add_option("--wavelengths", opts->wavelengths,
+                    "Spectral mode's wavelength sampling: visible (pbrt-v4's visible density) "
+                    "or hero (Wilkie et al. 2014, uniform hero and equally spaced rotations)")
+        ->capture_default_str();
     cmd->add_option("--threads", opts->settings.threads, "Worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_option("-o,--output", opts->output, "Output image (.exr linear, .png sRGB, .pfm)")

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "sampling/sampler.h"
+#include "spectral/sampled_wavelengths.h"
 
 namespace pathlab {
 
@@ -26,9 +27,11 @@ struct IntegratorSettings {
     int firstBounce = dims::kFirstBounce;
     // Spectral mode (render/colour/spectral_paths.h): each path carries four
     // wavelengths drawn from dimension wavelengthDimension, and firstBounce
-    // is the dimension after it.
+    // is the dimension after it; `wavelengths` says how that one number
+    // becomes the four (SampledWavelengths::sample).
     bool spectral = false;
     int wavelengthDimension = 0;
+    spectral::WavelengthSampling wavelengths = spectral::WavelengthSampling::Visible;
 };
 
 }  // namespace pathlab

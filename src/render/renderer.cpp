@@ -25,6 +25,7 @@
 #include "render/running_sums.h"
 #include "sampling/registry.h"
 #include "spectral/rgb_spectrum_table.h"
+#include "spectral/white_balance.h"
 
 namespace pathlab {
 namespace {
@@ -62,6 +63,7 @@ struct FrameSetup {
     FilterSampler filter;
     PixelBounds bounds;
     float scale;
+    spectral::RgbBalance balance;  // the film's white balance, per sample
     // A pixel's camera rays all start at one point (a pinhole): Embree traces
     // them as one coherent packet from it.
     bool sharedOrigin;
@@ -74,8 +76,12 @@ FrameSetup makeFrame(const SceneDescription& desc, Vec2i resolution) {
         throw InputError("film scale must be positive, got " + std::to_string(desc.film.scale));
     CameraModel camera(desc.camera, resolution);
     const bool shared = camera.isPinhole() || camera.projective().sharedOrigin();
-    return FrameSetup{std::move(camera), FilterSampler(desc.film.filter),
-                      filmPixelBounds(desc.film, resolution), desc.film.scale, shared};
+    return FrameSetup{std::move(camera),
+                      FilterSampler(desc.film.filter),
+                      filmPixelBounds(desc.film, resolution),
+                      desc.film.scale,
+                      spectral::linearSrgbWhiteBalance(desc.film.whiteBalance),
+                      shared};
 }
 
 // Mean and variance of the mean of the first n samples, from running sums,
@@ -205,7 +211,7 @@ void renderPixel(const RenderScene& scene, const FrameSetup& frame, S& sampler, 
                 radiance[k] = estimateRadiance(scene, origins[k], dirs[k], found[k], first[k],
                                                sampler, pixel, i0 + k, integrator, result.counters);
         for (int k = 0; k < count; ++k) {
-            Vec3f L = radiance[k];
+            Vec3f L = frame.balance.identity ? radiance[k] : frame.balance(radiance[k]);
             if (!isFinite(L)) {  // never let a NaN/Inf reach the image
                 ++nonFinite;
                 L = Vec3f(0.0f);
@@ -315,6 +321,10 @@ void validateRenderSettings(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 4096)
         throw InputError("threads must be between 0 (all cores) and 4096, got " +
                          std::to_string(s.threads));
+    if (s.wavelengths != spectral::WavelengthSampling::Visible && !s.spectral)
+        throw InputError(std::string("wavelength sampling '") +
+                         spectral::wavelengthSamplingName(s.wavelengths) +
+                         "' needs spectral mode (--spectral)");
     const SamplerInfo& info = samplerInfo(s.sampler);
     int previous = 0;
     for (int n : s.prefixSpp) {
@@ -369,6 +379,7 @@ RenderOutput render(const RenderScene& scene, const RenderSettings& settings) {
         integrator.spectral = true;
         integrator.wavelengthDimension = dims::wavelength(lens);
         integrator.firstBounce = dims::spectralFirstBounce(lens);
+        integrator.wavelengths = settings.wavelengths;
     }
 
     const PixelBounds& b = frame.bounds;

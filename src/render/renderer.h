@@ -41,6 +41,9 @@ struct RenderSettings {
     // Carry four sampled wavelengths per path instead of RGB
     // (render/colour/spectral_paths.h); the image is linear sRGB either way.
     bool spectral = false;
+    // How spectral mode draws its wavelengths (IntegratorSettings::wavelengths);
+    // anything but the default needs `spectral`.
+    spectral::WavelengthSampling wavelengths = spectral::WavelengthSampling::Visible;
     int threads = 0;  // 0: all cores
     bool progress = false;
     // Also keep the image after each of these sample counts (ascending, each

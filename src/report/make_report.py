@@ -435,6 +435,13 @@ def gallery(samplers, pathlab, figures_dir):
 
 # --- the page ----------------------------------------------------------------
 
+def colour_mode(info):
+    """RGB or spectral, and spectral mode's wavelength sampling (docs/rendering.md)."""
+    if info.get("spectral", "false") != "true":
+        return "RGB"
+    return f"spectral ({info.get('wavelengths', 'visible')} wavelengths)"
+
+
 def header(study):
     info = study.info
     scenes = study.scenes()
@@ -446,6 +453,7 @@ def header(study):
         ("cells", str(len(study.cells))),
         ("resolution", f"{info.get('width', '?')}×{info.get('height', '?')}"),
         ("max depth", info.get("max_depth", "?")),
+        ("colour", colour_mode(info)),
         ("reference", f"{info.get('reference_spp', '?')} spp, "
                       f"{info.get('reference_sampler', '?')}, seed {info.get('reference_seed', '?')}"),
         ("Russian roulette", f"after {info.get('roulette_depth', '2')} bounces"

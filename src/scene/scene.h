@@ -164,6 +164,10 @@ struct Film {
     // Multiplies the image: pbrt-v4's imaging ratio, exposuretime · iso / 100
     // (times the film's `scale`).
     float scale = 1;
+    // pbrt-v4's Film "whitebalance" (spectral/white_balance.h): the colour
+    // temperature in kelvin of the white the "cie1931" sensor is balanced
+    // for, each sample adapted from it to the colour space's white; 0: none.
+    float whiteBalance = 0;
     // The part of the image rendered, as fractions xmin, xmax, ymin, ymax of
     // the full resolution (pbrt-v4's cropwindow): the image holds pixels
     // ceil(W·xmin) … ceil(W·xmax) − 1 and likewise in y.

@@ -26,4 +26,11 @@ extern const double kCmfX[kCmfCount], kCmfY[kCmfCount], kCmfZ[kCmfCount];
 extern const TabulatedSpectrum kIlluminants[];
 extern const int kIlluminantCount;
 
+// The CIE daylight basis S0, S1, S2 at 300, 305, …, 830 nm (CIE 15:2004 table
+// T.2): a daylight illuminant of chromaticity (x, y) is S0 + M1 S1 + M2 S2.
+inline constexpr double kDaylightFirst = 300, kDaylightStep = 5;
+inline constexpr int kDaylightCount = 107;
+extern const double kDaylightS0[kDaylightCount], kDaylightS1[kDaylightCount],
+    kDaylightS2[kDaylightCount];
+
 }  // namespace pathlab::spectral::cie_data

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace pathlab::spectral {
 namespace {
 
@@ -30,6 +32,16 @@ float stratum(float u, int i) {
 }
 
 }  // namespace
+
+WavelengthSampling parseWavelengthSampling(const std::string& text, const std::string& option) {
+    if (text == "visible") return WavelengthSampling::Visible;
+    if (text == "hero") return WavelengthSampling::Hero;
+    throw InputError(option + " must be visible or hero, got '" + text + "'");
+}
+
+const char* wavelengthSamplingName(WavelengthSampling mode) {
+    return mode == WavelengthSampling::Hero ? "hero" : "visible";
+}
 
 double visibleWavelengthPdf(double lambdaNm) {
     if (lambdaNm < kLambdaMin || lambdaNm > kLambdaMax) return 0;

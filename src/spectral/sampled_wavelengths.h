@@ -8,10 +8,20 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include "spectral/sampled_spectrum.h"
 
 namespace pathlab::spectral {
+
+// How spectral mode draws a camera sample's wavelengths from its one
+// wavelength dimension (`render --wavelengths`, the study key `wavelengths`;
+// docs/rendering.md, "Dimension layout"): pbrt-v4's visible density
+// (sampleVisible, the default) or Wilkie et al.'s hero rotation (sampleHero).
+enum class WavelengthSampling { Visible, Hero };
+// "visible" or "hero"; anything else throws InputError naming `option`.
+WavelengthSampling parseWavelengthSampling(const std::string& text, const std::string& option);
+const char* wavelengthSamplingName(WavelengthSampling mode);
 
 // pbrt-v4's visible-wavelength density (its SampleVisibleWavelengths, fitted
 // to the CIE Y curve): p(λ) ∝ sech²(0.0072 (λ − 538 nm)), normalised exactly
@@ -34,6 +44,10 @@ class SampledWavelengths {
     // λ_i = λmin + ((λ₀ − λmin + i·Δ/N) mod Δ), Δ = λmax − λmin. Lane 0 is the
     // hero; as a set it equals sampleUniform's.
     static SampledWavelengths sampleHero(float u);
+    // The sampler `mode` names.
+    static SampledWavelengths sample(WavelengthSampling mode, float u) {
+        return mode == WavelengthSampling::Hero ? sampleHero(u) : sampleVisible(u);
+    }
 
     float lambda(int i) const { return lambda_[size_t(i)]; }
     float pdf(int i) const { return pdf_[size_t(i)]; }

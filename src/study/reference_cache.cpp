@@ -128,6 +128,8 @@ std::string referenceCacheKey(const SceneDescription& scene, const StudyScene& s
     // Only when set, so that the keys of studies without it stay as they were.
     if (!spec.lightSampler.empty()) h.text("light_sampler " + spec.lightSampler);
     if (spec.spectral) h.text("spectral");
+    if (spec.wavelengths != spectral::WavelengthSampling::Visible)
+        h.text(std::string("wavelengths ") + spectral::wavelengthSamplingName(spec.wavelengths));
     // The ranges' sums are added in range order: their number is in the bits.
     if (spec.reference.ranges) h.text("reference ranges " + std::to_string(spec.reference.ranges));
     return h.hex();
@@ -180,6 +182,7 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
     std::error_code ec;
     fs::create_directories(directory_, ec);
     writeImage(imagePath(r.cacheKey).string(), r.image);
+    const std::string wavelengthsName = spectral::wavelengthSamplingName(spec.wavelengths);
     const nlohmann::json meta = {{"cache_key", r.cacheKey},
                                  {"version", kReferenceCacheVersion},
                                  {"scene", scene.name},
@@ -190,6 +193,7 @@ void ReferenceCache::store(const Reference& r, const StudyScene& scene,
                                  {"russian_roulette", spec.russianRoulette},
                                  {"roulette_depth", spec.rouletteDepth},
                                  {"spectral", spec.spectral},
+                                 {"wavelengths", wavelengthsName},
                                  {"light_sampler", spec.lightSampler},
                                  {"ranges", spec.reference.ranges},
                                  {"spp", spec.reference.spp},
@@ -214,6 +218,7 @@ RenderSettings studyRenderSettings(const StudySpec& spec, int threads) {
     s.russianRoulette = spec.russianRoulette;
     s.rouletteDepth = spec.rouletteDepth;
     s.spectral = spec.spectral;
+    s.wavelengths = spec.wavelengths;
     s.threads = threads;
     return s;
 }

@@ -164,6 +164,7 @@ void recordStudy(const StudySpec& spec, const std::vector<SceneJob>& jobs, Resul
         {"russian_roulette", spec.russianRoulette ? "true" : "false"},
         {"roulette_depth", std::to_string(spec.rouletteDepth)},
         {"spectral", spec.spectral ? "true" : "false"},
+        {"wavelengths", spectral::wavelengthSamplingName(spec.wavelengths)},
         {"reference_spp", std::to_string(spec.reference.spp)},
         {"reference_sampler", spec.reference.sampler},
         {"reference_seed", std::to_string(spec.reference.seed)},

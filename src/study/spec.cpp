@@ -289,8 +289,8 @@ std::vector<ExternalSpec> SpecReader::externals(const toml::node& n,
 StudySpec readSpec(const toml::table& t, const SpecReader& in) {
     in.onlyKeys(t, "",
                 {"name", "scenes", "samplers", "spp", "seeds", "resolution", "max_depth",
-                 "russian_roulette", "roulette_depth", "light_sampler", "spectral", "metrics",
-                 "time_budget_seconds", "reference", "external", "difficulty"});
+                 "russian_roulette", "roulette_depth", "light_sampler", "spectral", "wavelengths",
+                 "metrics", "time_budget_seconds", "reference", "external", "difficulty"});
     StudySpec s;
     if (const toml::node* v = t.get("name")) {
         s.name = in.string(*v, "name");
@@ -316,6 +316,15 @@ StudySpec readSpec(const toml::table& t, const SpecReader& in) {
                         s.lightSampler + "'");
     }
     if (const toml::node* v = t.get("spectral")) s.spectral = in.boolean(*v, "spectral");
+    if (const toml::node* v = t.get("wavelengths")) {
+        const std::string name = in.string(*v, "wavelengths");
+        if (name != "visible" && name != "hero")
+            in.fail(v->source(), "wavelengths",
+                    "must be \"visible\" or \"hero\", got '" + name + "'");
+        s.wavelengths = spectral::parseWavelengthSampling(name, "wavelengths");
+        if (s.wavelengths != spectral::WavelengthSampling::Visible && !s.spectral)
+            in.fail(v->source(), "wavelengths", "\"" + name + "\" needs spectral = true");
+    }
     if (const toml::node* v = t.get("metrics"))
         s.metrics = in.names(*v, "metrics", knownStudyMetrics(), "metric");
     if (const toml::node* v = t.get("time_budget_seconds"))
@@ -405,6 +414,8 @@ std::string studySpecToToml(const StudySpec& s) {
         << "roulette_depth = " << s.rouletteDepth << "\n";
     if (!s.lightSampler.empty()) out << "light_sampler = " << quoted(s.lightSampler) << "\n";
     if (s.spectral) out << "spectral = true\n";
+    if (s.wavelengths != spectral::WavelengthSampling::Visible)
+        out << "wavelengths = " << quoted(spectral::wavelengthSamplingName(s.wavelengths)) << "\n";
     out << "metrics = " << tomlArray(s.metrics, str) << "\n";
     if (s.timeBudgetSeconds)
         out << "time_budget_seconds = " << nlohmann::json(*s.timeBudgetSeconds).dump() << "\n";
@@ -448,6 +459,7 @@ std::string firstSpecDifference(const StudySpec& a, const StudySpec& b) {
     if (a.rouletteDepth != b.rouletteDepth) return "roulette_depth";
     if (a.lightSampler != b.lightSampler) return "light_sampler";
     if (a.spectral != b.spectral) return "spectral";
+    if (a.wavelengths != b.wavelengths) return "wavelengths";
     if (a.metrics != b.metrics) return "metrics";
     if (a.timeBudgetSeconds != b.timeBudgetSeconds) return "time_budget_seconds";
     if (a.reference.spp != b.reference.spp) return "reference.spp";

@@ -73,6 +73,9 @@ struct StudySpec {
     // Every render of the study, the reference's included, in spectral mode
     // (RenderSettings::spectral).
     bool spectral = false;
+    // Spectral mode's wavelength sampling (RenderSettings::wavelengths): the
+    // key `wavelengths = "hero"`; anything but the default needs `spectral`.
+    spectral::WavelengthSampling wavelengths = spectral::WavelengthSampling::Visible;
     ReferenceSpec reference;
     std::vector<std::string> metrics{"mse", "relmse", "psnr", "flip"};
     std::optional<double> timeBudgetSeconds;

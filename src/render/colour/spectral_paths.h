@@ -28,12 +28,14 @@ constexpr int spectralFirstBounce(bool lens) {
 }
 }  // namespace dims
 
-// The sample's wavelengths from its wavelength dimension.
+// The sample's wavelengths from its wavelength dimension: pbrt-v4's visible
+// density by default, or hero-wavelength sampling (the same one dimension).
 template <Sampler S>
 spectral::SampledWavelengths sampleWavelengths(S& sampler, Vec2i pixel, int sampleIndex,
-                                               int wavelengthDimension) {
+                                               int wavelengthDimension,
+                                               spectral::WavelengthSampling mode) {
     sampler.startPixelSample(pixel, sampleIndex, wavelengthDimension);
-    return spectral::SampledWavelengths::sampleVisible(sampler.get1D());
+    return spectral::SampledWavelengths::sample(mode, sampler.get1D());
 }
 
 // Radiance, as linear sRGB, of `count` consecutive samples of a pixel whose
@@ -56,8 +58,9 @@ void estimateSpectralRadiance(const RenderScene& scene, const Vec3f* origins, co
     static thread_local SigmoidCache cache;
     SpectralContext ctx[kBatchSamples];
     for (int k = 0; k < count; ++k) {
-        ctx[k] = SpectralContext(
-            sampleWavelengths(sampler, pixel, firstIndex + k, wavelengthDimension), cache);
+        ctx[k] = SpectralContext(sampleWavelengths(sampler, pixel, firstIndex + k,
+                                                   wavelengthDimension, settings.wavelengths),
+                                 cache);
         ++counters.dimensions;
     }
     spectral::SampledSpectrum radiance[kBatchSamples];

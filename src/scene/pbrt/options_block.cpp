@@ -147,10 +147,18 @@ void film(ImportState& st, const std::string& type, const ParamSet& ps,
     const float iso = ps.getFloat("iso", 100);
     if (!(iso > 0)) throw errorAt(where, "Film: iso must be positive");
     st.isoScale = iso / 100;
-    if (ps.getFloat("whitebalance", 0) != 0)
-        st.unsupported(where, "Film white balance", "no white balance");
-    if (ps.getString("sensor", "cie1931") != "cie1931")
-        st.unsupported(where, "Film sensor other than cie1931", "the CIE 1931 observer");
+    s.film.whiteBalance = ps.getFloat("whitebalance", 0);
+    if (!(s.film.whiteBalance >= 0 && std::isfinite(s.film.whiteBalance)))
+        throw errorAt(where, "Film: whitebalance must be 0 (none) or a temperature in kelvin");
+    const std::string sensor = ps.getString("sensor", "cie1931");
+    if (sensor != "cie1931") {
+        // pbrt-v4's camera sensors are measured response curves (its
+        // "<name>_r/_g/_b" named spectra) that pathlab does not ship.
+        st.unsupported(where,
+                       "Film sensor \"" + sensor +
+                           "\" (pbrt-v4's measured camera curves are data pathlab does not have)",
+                       "the CIE 1931 observer");
+    }
     if (std::isfinite(ps.getFloat("maxcomponentvalue", INFINITY)))
         st.unsupported(where, "Film maxcomponentvalue (clamping)", "no clamping");
     for (const char* ignored : {"filename", "diagonal", "savefp16", "writefp16"})
