@@ -81,12 +81,12 @@ TEST(PbrtScenes, SpheresStayExactUnderSimilarityTransforms) {
 // facing outwards.
 TEST(PbrtScenes, EmittingSpheresAreExactOrValidTriangleLights) {
     ScratchDir dir;
-    const std::string file = dir.write(
-        "s.pbrt",
-        "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n"
-        "Translate 0 5 0\nShape \"sphere\" \"float radius\" 0.5\n"
-        "Shape \"sphere\" \"float radius\" 0.5 \"float zmax\" 0.25\nAttributeEnd\n"
-        "Shape \"bilinearmesh\" \"point3 P\" [-1 0 -1 1 0 -1 -1 0 1 1 0 1]\n");
+    const std::string file =
+        dir.write("s.pbrt",
+                  "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n"
+                  "Translate 0 5 0\nShape \"sphere\" \"float radius\" 0.5\n"
+                  "Shape \"sphere\" \"float radius\" 0.5 \"float zmax\" 0.25\nAttributeEnd\n"
+                  "Shape \"bilinearmesh\" \"point3 P\" [-1 0 -1 1 0 -1 -1 0 1 1 0 1]\n");
     const SceneDescription s = loadScene(file);  // validated
     ASSERT_EQ(s.spheres.size(), 1u);
     EXPECT_EQ(s.spheres[0].emission.x, 2);
