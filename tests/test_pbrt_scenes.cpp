@@ -75,19 +75,26 @@ TEST(PbrtScenes, SpheresStayExactUnderSimilarityTransforms) {
     EXPECT_NEAR(b.extent().y, 4, 1e-5);
 }
 
-// pathlab's lights are triangles: an emitting sphere is tessellated, without
-// the triangles of no area at its poles (a light is sampled by area).
-TEST(PbrtScenes, AnEmittingSphereIsAValidTriangleLight) {
+// A whole emitting sphere stays an exact sphere, a light sampled by the cone
+// it subtends (render/sphere_light.h); a partial one is tessellated, without
+// the triangles of no area at its pole (a triangle light is sampled by area),
+// facing outwards.
+TEST(PbrtScenes, EmittingSpheresAreExactOrValidTriangleLights) {
     ScratchDir dir;
     const std::string file =
         dir.write("s.pbrt",
                   "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n"
-                  "Translate 0 5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+                  "Translate 0 5 0\nShape \"sphere\" \"float radius\" 0.5\n"
+                  "Shape \"sphere\" \"float radius\" 0.5 \"float zmax\" 0.25\nAttributeEnd\n"
                   "Shape \"bilinearmesh\" \"point3 P\" [-1 0 -1 1 0 -1 -1 0 1 1 0 1]\n");
     const SceneDescription s = loadScene(file);  // validated
+    ASSERT_EQ(s.spheres.size(), 1u);
+    EXPECT_EQ(s.spheres[0].emission.x, 2);
+    EXPECT_EQ(s.spheres[0].radius, 0.5f);
+    EXPECT_EQ(s.spheres[0].center.y, 5);
     ASSERT_EQ(s.meshes.size(), 2u);
     EXPECT_EQ(s.meshes[0].emission.x, 2);
-    EXPECT_NEAR(meshArea(s.meshes[0]), 4 * kPi * 0.25, 0.01);
+    EXPECT_NEAR(meshArea(s.meshes[0]), 2 * kPi * 0.5 * 0.75, 0.01);
     // Outward: every triangle's front faces away from the centre.
     const Mesh& m = s.meshes[0];
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {

@@ -212,10 +212,12 @@ TEST(AreaLightPower, PerTriangleAndPerSphereAsPbrtV4) {
         "AttributeBegin\nAreaLightSource \"diffuse\" \"float power\" 10 \"bool twosided\" true "
         "\"rgb L\" [1 2 3]\nScale 3 3 3\nShape \"sphere\" \"float radius\" 2\nAttributeEnd\n",
         "t.pbrt", ".");
-    ASSERT_EQ(r.scene.meshes.size(), 2u);
+    ASSERT_EQ(r.scene.meshes.size(), 1u);
     EXPECT_NEAR(r.scene.meshes[0].emission.x, 10 / M_PI, 1e-5);  // each triangle has area 1
     // The sphere's own area 4π·2², whatever its transform; two-sided.
-    EXPECT_NEAR(r.scene.meshes[1].emission.z, 3 * 10 / (2 * M_PI * 16 * M_PI), 1e-6);
+    ASSERT_EQ(r.scene.spheres.size(), 1u);
+    EXPECT_NEAR(r.scene.spheres[0].emission.z, 3 * 10 / (2 * M_PI * 16 * M_PI), 1e-6);
+    EXPECT_TRUE(r.scene.spheres[0].twoSided);
     const std::string error = test::inputErrorOf([] {
         pbrt::importPbrtText(
             "WorldBegin\nAreaLightSource \"diffuse\" \"float power\" 10\n"

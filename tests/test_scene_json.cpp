@@ -313,7 +313,8 @@ TEST(JsonScene, DocumentedExampleLoads) {
     const SceneDescription s = loadScene(dir.write("example.json", example));
     EXPECT_EQ(s.name, "example");
     EXPECT_EQ(s.materials.size(), 17u);  // sixteen named and the lights' black one
-    EXPECT_EQ(s.spheres.size(), 1u);
+    ASSERT_EQ(s.spheres.size(), 2u);
+    EXPECT_EQ(s.spheres[1].emission.x, 40);  // an emitting sphere
     EXPECT_EQ(s.punctualLights.size(), 3u);
     EXPECT_EQ(s.environmentMap.width, 4);
 }

@@ -86,7 +86,7 @@ TEST(JsonMaterials, BadValuesNameTheirKey) {
               "test.json: materials: mix material 'm' contains itself");
     EXPECT_EQ(errorOf(R"("m": {"type": "thindielectric", "roughness": 0.1})"),
               "test.json: materials.m: unknown key 'roughness' (expected one of: type, ior, "
-              "normalMap, bumpMap, bumpScale)");
+              "normalMap, bumpMap, bumpScale, displacement)");
     EXPECT_EQ(errorOf(R"("m": {"type": "diffusetransmission", "transmittance": 2})"),
               "test.json: materials.m.transmittance: must be at most 1");
 }

@@ -19,6 +19,7 @@ struct RenderOptions {
     RenderOptionValues values;
     bool noRoulette = false;
     bool solidAngleLights = false;
+    bool sphereLightsByArea = false;
     std::string lightSampler;  // "": the scene file's choice, else power
     std::string wavelengths = "visible";
     bool lenient = false;
@@ -49,8 +50,9 @@ void runRender(RenderOptions& o) {
     if (!o.lightSampler.empty()) desc.defaults.lightSampler = o.lightSampler;
     RenderSettings& s = o.settings;
     s.progress = true;
-    const RenderScene scene(std::move(desc),
-                            o.solidAngleLights ? LightSampling::SolidAngle : LightSampling::Area);
+    const RenderScene scene(std::move(desc), o.solidAngleLights     ? LightSampling::SolidAngle
+                                             : o.sphereLightsByArea ? LightSampling::UniformArea
+                                                                    : LightSampling::Area);
     const RenderOutput out = render(scene, s);
     writeImage(o.output, out.image);
     const RenderStats& st = out.stats;
@@ -93,8 +95,13 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--roulette-depth", opts->values.rouletteDepth,
                     "Bounces before Russian roulette may end a path (pbrt-v4: 2, Mitsuba 3: 4)")
         ->capture_default_str();
-    cmd->add_flag("--solid-angle-lights", opts->solidAngleLights,
-                  "Sample rectangular lights by solid angle instead of by area");
+    CLI::Option* solidAngle =
+        cmd->add_flag("--solid-angle-lights", opts->solidAngleLights,
+                      "Sample rectangular lights by solid angle instead of by area");
+    cmd->add_flag("--sphere-lights-by-area", opts->sphereLightsByArea,
+                  "Sample emitting spheres uniformly by area instead of by the cone they "
+                  "subtend (to compare)")
+        ->excludes(solidAngle);
     cmd->add_option("--light-sampler", opts->lightSampler,
                     "How a light is chosen for next-event estimation: uniform, power or bvh "
                     "(default: the scene file's, else power)");

@@ -15,7 +15,7 @@ bool seesEmitter(const RenderScene& scene, const CameraModel& camera, float x, f
     const CameraRay r = camera.centralRay({x, y});
     SurfaceInteraction si;
     if (!scene.intersect(r.origin, r.direction, &si) || si.light < 0) return false;
-    return !isBlack(scene.lights().areaLight(si.light).emitted(-r.direction));
+    return !isBlack(scene.lights().areaLight(si.light).emittedAt(si.p, -r.direction));
 }
 
 // Probes along `lines` straight lines of the film, `count` points each:

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "render/sampling_routines.h"
+#include "render/sphere_light.h"
 
 namespace pathlab {
 namespace {
@@ -185,6 +186,29 @@ std::optional<SphericalRectangle> solidAngleView(const AreaLight& l, Vec3f ref) 
     return rect;
 }
 
+AreaLight makeSphereLight(const Sphere& s) {
+    AreaLight l;
+    l.sphere = true;
+    l.center = s.center;
+    l.radius = s.radius;
+    l.area = 4 * kPi * s.radius * s.radius;
+    l.radiance = s.emission;
+    l.twoSided = s.twoSided;
+    return l;
+}
+
+// A sphere light's point for a receiver at ref: by its cone where the
+// receiver is outside and cone sampling is on, else by area.
+std::optional<AreaLight::DirectionSample> sampleSphereFrom(const AreaLight& l, Vec3f ref, Vec2f u) {
+    if (l.solidAngleSampling && sphereConeExists(l.center, l.radius, ref)) {
+        const SpherePoint s = sampleSphereCone(l.center, l.radius, ref, u);
+        return AreaLight::DirectionSample{s.p, s.pdf};
+    }
+    const auto s = sampleSphereArea(l.center, l.radius, ref, u);
+    if (!s) return std::nullopt;
+    return AreaLight::DirectionSample{s->p, s->pdf};
+}
+
 // Uniform area density 1/A per unit solid angle at ref: dist² / (A |cosθ_light|);
 // 0 when p is ref itself or lies edge-on.
 float areaDensity(const AreaLight& l, Vec3f ref, Vec3f p) {
@@ -203,6 +227,8 @@ float AreaLight::power() const {
 
 std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f ns,
                                                                 Vec2f u) const {
+    if (sphere) [[unlikely]]
+        return sampleSphereFrom(*this, ref, u);
     if (!twoSided && dot(ref - p0, n) <= 0) return std::nullopt;  // sees the back only
     if (const auto rect = solidAngleSampling ? solidAngleView(*this, ref) : std::nullopt) {
         float pdf = float(1 / rect->solidAngle);
@@ -224,6 +250,13 @@ std::optional<AreaLight::DirectionSample> AreaLight::sampleFrom(Vec3f ref, Vec3f
 }
 
 float AreaLight::pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const {
+    if (sphere) [[unlikely]] {
+        // Constant over the cone: p is where the ray towards it first meets
+        // the sphere, on the cap the cone covers.
+        if (solidAngleSampling && sphereConeExists(center, radius, ref))
+            return sphereConePdf(center, radius, ref);
+        return sphereAreaPdf(center, radius, ref, p);
+    }
     if (!twoSided && dot(ref - p0, n) <= 0) return 0;
     if (const auto rect = solidAngleSampling ? solidAngleView(*this, ref) : std::nullopt) {
         float pdf = float(1 / rect->solidAngle);
@@ -265,13 +298,27 @@ LightSet::LightSet(const SceneDescription& scene, Vec3f focus, LightSampling str
     }
     for (AreaLight& l : lights_)
         l.solidAngleSampling = l.rectangle && strategy == LightSampling::SolidAngle;
+    sphereLight_.assign(scene.spheres.size(), -1);
+    for (size_t i = 0; i < scene.spheres.size(); ++i) {
+        if (isBlack(scene.spheres[i].emission)) continue;
+        sphereLight_[i] = int(lights_.size());
+        lights_.push_back(makeSphereLight(scene.spheres[i]));
+        lights_.back().solidAngleSampling = strategy != LightSampling::UniformArea;
+    }
     chooser_ = LightChooser(selection, powerWeights(focus), lightBounds());
-    onlyAreaLight_ = chooser_.size() == 1 && lights_.size() == 1 && !lights_[0].solidAngleSampling;
+    onlyAreaLight_ = chooser_.size() == 1 && lights_.size() == 1 &&
+                     !lights_[0].solidAngleSampling && !lights_[0].sphere;
 }
 
 // Irradiance at `x` from light `l` if nothing blocked it, treating the light as
 // a point at its centroid (receiver orientation unknown: no receiver cosine).
 static double irradianceAt(const AreaLight& l, Vec3f x) {
+    if (l.sphere) {
+        // A sphere facing x delivers π L sin²θmax = π L r² / d² (d ≥ r).
+        const Vec3f d = x - l.center;
+        const float r2 = l.radius * l.radius;
+        return double(luminance(l.radiance)) * kPi * r2 / std::max(dot(d, d), r2);
+    }
     const Vec3f centroid = l.p0 + (l.e1 + l.e2) * (l.parallelogram ? 0.5f : 1.0f / 3.0f);
     const Vec3f d = x - centroid;
     const float dist2 = std::max(dot(d, d), 1e-12f);
@@ -338,6 +385,16 @@ std::vector<std::optional<LightBounds>> LightSet::lightBounds() const {
     std::vector<std::optional<LightBounds>> bounds;
     for (const AreaLight& l : lights_) {
         LightBounds b;
+        if (l.sphere) {
+            // Normals in every direction, as pbrt-v4's Sphere::NormalBounds.
+            b.bounds.extend(l.center - Vec3f(l.radius)),
+                b.bounds.extend(l.center + Vec3f(l.radius));
+            b.phi = l.power();
+            b.normals = DirectionCone::entireSphere();
+            b.twoSided = l.twoSided;
+            bounds.push_back(b);
+            continue;
+        }
         b.bounds.extend(l.p0), b.bounds.extend(l.p0 + l.e1), b.bounds.extend(l.p0 + l.e2);
         if (l.parallelogram) b.bounds.extend(l.p0 + l.e1 + l.e2);
         b.phi = l.power();
@@ -390,7 +447,7 @@ std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uCh
                            environment_, choicePmf * uniformSpherePdf()};
     }
     const AreaLight& light = lights_[i];
-    if (!light.solidAngleSampling) return sampleByArea(light, ref, u, choicePmf);
+    if (!light.solidAngleSampling && !light.sphere) return sampleByArea(light, ref, u, choicePmf);
     const auto s = light.sampleFrom(ref, ns, u);
     if (!s) return std::nullopt;
     const Vec3f d = s->p - ref;
@@ -398,7 +455,7 @@ std::optional<LightSample> LightSet::sampleChosen(Vec3f ref, Vec3f ns, float uCh
     if (!(dist2 > 0) || !(s->pdf > 0) || std::isinf(s->pdf)) return std::nullopt;
     const float dist = std::sqrt(dist2);
     const Vec3f wi = d / dist;
-    const Vec3f Le = light.emitted(-wi);
+    const Vec3f Le = light.emittedAt(s->p, -wi);
     if (isBlack(Le)) return std::nullopt;
     return LightSample{wi, dist, Le, choicePmf * s->pdf};
 }

@@ -14,10 +14,16 @@
 // constant environment. That is the `power` light selection, the default; the
 // choice can also be uniform or made by a light BVH (light_sampling/).
 //
-// Lights are sampled uniformly by area unless LightSampling::SolidAngle is
-// asked for. Then a point on a rectangular light is sampled by the solid angle
-// it subtends at the receiver (Ureña, Fajardo & King 2013), the 2D sample first warped by a
-// bilinear fit of the receiver's cosine at the rectangle's corners (as pbrt-v4's
+// An emitting sphere is one more area light, sampled as pbrt-v4 samples it:
+// uniformly in the cone of directions it subtends at a receiver outside it,
+// uniformly by area from inside (render/sphere_light.h) — unless
+// LightSampling::UniformArea asks for area sampling everywhere, which is there
+// to be compared.
+//
+// Triangles and parallelograms are sampled uniformly by area unless
+// LightSampling::SolidAngle is asked for. Then a point on a rectangular light is sampled by the
+// solid angle it subtends at the receiver (Ureña, Fajardo & King 2013), the 2D sample first warped
+// by a bilinear fit of the receiver's cosine at the rectangle's corners (as pbrt-v4's
 // BilinearPatch::Sample); other lights, and rectangles seen at a tiny solid
 // angle or from (nearly) their own plane, are sampled uniformly by area. Which
 // strategy is used depends only on the receiver's position, so the density
@@ -39,7 +45,10 @@
 
 namespace pathlab {
 
-enum class LightSampling { Area, SolidAngle };
+// Area: triangles and parallelograms by area, spheres by their cone (the
+// default). SolidAngle: rectangles by solid angle too. UniformArea: every
+// light by area, spheres too.
+enum class LightSampling { Area, SolidAngle, UniformArea };
 
 struct AreaLight {
     Vec3f p0, e1, e2;  // triangle p0, p0+e1, p0+e2 — or parallelogram p0 + u·e1 + v·e2
@@ -51,7 +60,12 @@ struct AreaLight {
     // A parallelogram with perpendicular edges: then xAxis = e1/|e1|, yAxis =
     // n × xAxis, and the rectangle is p0 + [0, width]·xAxis + [0, height]·yAxis.
     bool rectangle = false;
-    bool solidAngleSampling = false;  // sample the rectangle by solid angle
+    bool solidAngleSampling = false;  // sample the rectangle (sphere) by solid angle
+    // An emitting sphere (Sphere::emission): centre and radius; p0, e1, e2 and
+    // n are unused, area is 4πr².
+    bool sphere = false;
+    Vec3f center;
+    float radius = 0;
     Vec3f xAxis, yAxis;
     float width = 0, height = 0;
     float power() const;
@@ -75,7 +89,14 @@ struct AreaLight {
     // (p on the light, seen from ref on its emitting side).
     float pdfFrom(Vec3f ref, Vec3f ns, Vec3f p) const;
     // Emitted radiance towards direction w (pointing away from the light).
+    // Not for spheres, whose normal depends on the point: emittedAt.
     Vec3f emitted(Vec3f w) const { return (twoSided || dot(n, w) > 0) ? radiance : Vec3f(0.0f); }
+    // Emitted radiance from point p of the light towards w.
+    Vec3f emittedAt(Vec3f p, Vec3f w) const {
+        if (sphere) [[unlikely]]
+            return (twoSided || dot(p - center, w) > 0) ? radiance : Vec3f(0.0f);
+        return emitted(w);
+    }
 };
 
 struct LightSample {
@@ -126,6 +147,8 @@ class LightSet {
     size_t punctualLightCount() const { return punctual_.size(); }
     // The light a triangle belongs to, or −1.
     int lightOfTriangle(unsigned mesh, unsigned triangle) const;
+    // The light of SceneDescription::spheres[sphere], or −1 when it does not emit.
+    int lightOfSphere(unsigned sphere) const { return sphereLight_[sphere]; }
     // lightOfTriangle of all the mesh's triangles, by triangle.
     const int* trianglesLights(unsigned mesh) const { return triangleLight_[mesh].data(); }
 
@@ -163,12 +186,13 @@ class LightSet {
     std::vector<std::optional<LightBounds>> lightBounds() const;
     std::vector<AreaLight> lights_;
     std::vector<std::vector<int>> triangleLight_;  // per mesh, per triangle
+    std::vector<int> sphereLight_;                 // per sphere
     std::vector<PunctualLight> punctual_;
     std::optional<EnvironmentLight> environmentMap_;
     size_t environmentMapIndex() const;  // in chooser_
     Vec3f environment_;
     LightChooser chooser_;
-    bool onlyAreaLight_ = false;  // lights_[0] is the only light, sampled by area
+    bool onlyAreaLight_ = false;  // lights_[0] is the only light, a polygon sampled by area
 };
 
 }  // namespace pathlab

@@ -182,7 +182,7 @@ void addEmission(const LightSet& lights, bool found, const SurfaceInteraction& s
         return;
     }
     if (si.light >= 0) {
-        const Vec3f Le = lights.areaLight(si.light).emitted(-dir);
+        const Vec3f Le = lights.areaLight(si.light).emittedAt(si.p, -dir);
         if (!isBlack(Le))
             L += beta * ctx.emission(Le) *
                  (unweighted ? 1.0f

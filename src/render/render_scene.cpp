@@ -146,6 +146,7 @@ void RenderScene::fillInteraction(Vec3f o, Vec3f d, const RayHit& hit,
         si->ng = si->ns = normalize(si->p - s.center);
         si->uv = {0, 0};
         si->material = s.material;
+        si->light = lights_->lightOfSphere(hit.primId);
         if (anyMapped_ && mapped_[size_t(si->material)]) [[unlikely]]
             bumpSphere(s, si->p - s.center, nullptr, d, si);
         return;

@@ -14,356 +14,23 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "scene/json_node.h"
 #include "scene/light_selection.h"
 #include "scene/mesh_utils.h"
 #include "scene/obj_loader.h"
-#include "scene/texture_loader.h"
-#include "scene/textures/image_encoding.h"
 
 namespace pathlab {
-namespace fs = std::filesystem;
-namespace {
+namespace jsonscene {
 
-// Keeps the keys in file order, so materials are numbered as written.
-using Json = nlohmann::ordered_json;
-
-const char* typeName(const Json& j) {
-    if (j.is_number()) return "a number";
-    if (j.is_string()) return "a string";
-    if (j.is_boolean()) return "a boolean";
-    if (j.is_array()) return "an array";
-    if (j.is_object()) return "an object";
-    return "null";
-}
-
-struct Context {
-    std::string source;
-    fs::path baseDir;
-};
-
-// A JSON value with its position in the document ("meshes[2].material"), so
-// every error names the key it is about.
-class Node {
-  public:
-    Node(const Json& j, std::string path, const Context& ctx)
-        : j_(j), path_(std::move(path)), ctx_(ctx) {}
-
-    const Json& json() const { return j_; }
-    const std::string& path() const { return path_; }
-
-    [[noreturn]] void fail(const std::string& message) const {
-        throw InputError(ctx_.source + ": " + (path_.empty() ? "" : path_ + ": ") + message);
-    }
-
-    void requireObject() const {
-        if (!j_.is_object()) fail(std::string("expected an object, got ") + typeName(j_));
-    }
-    // Every key must be one of `allowed` or `more`.
-    void keys(std::initializer_list<std::string_view> allowed,
-              std::span<const std::string_view> more = {}) const {
-        requireObject();
-        for (const auto& [key, value] : j_.items()) {
-            bool ok = false;
-            for (std::string_view a : allowed) ok |= key == a;
-            for (std::string_view a : more) ok |= key == a;
-            if (ok) continue;
-            std::string list;
-            for (std::string_view a : allowed) {
-                if (!list.empty()) list += ", ";
-                list += a;
-            }
-            for (std::string_view a : more) list += ", " + std::string(a);
-            fail("unknown key '" + key + "' (expected one of: " + list + ")");
-        }
-    }
-    bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
-    Node operator[](const char* key) const {
-        requireObject();
-        if (!j_.contains(key)) fail(std::string("missing required key '") + key + "'");
-        return Node(j_.at(key), join(key), ctx_);
-    }
-    size_t size() const {
-        if (!j_.is_array()) fail(std::string("expected an array, got ") + typeName(j_));
-        return j_.size();
-    }
-    Node at(size_t i) const { return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", ctx_); }
-
-    float number() const {
-        if (!j_.is_number()) fail(std::string("expected a number, got ") + typeName(j_));
-        const float v = j_.get<float>();
-        if (!std::isfinite(v)) fail("number out of range");
-        return v;
-    }
-    float positive() const {
-        const float v = number();
-        if (!(v > 0)) fail("must be positive");
-        return v;
-    }
-    // An image side: the same limit as `render --size`, so that a scene file
-    // cannot ask for an image the renderer cannot hold.
-    int imageSide() const {
-        if (!j_.is_number_integer()) fail(std::string("expected an integer, got ") + typeName(j_));
-        const auto v = j_.get<int64_t>();
-        if (v < 1 || v > kMaxImageSide)
-            fail("must be between 1 and " + std::to_string(kMaxImageSide) + ", got " +
-                 std::to_string(v));
-        return int(v);
-    }
-    bool boolean() const {
-        if (!j_.is_boolean()) fail(std::string("expected true or false, got ") + typeName(j_));
-        return j_.get<bool>();
-    }
-    std::string string() const {
-        if (!j_.is_string()) fail(std::string("expected a string, got ") + typeName(j_));
-        return j_.get<std::string>();
-    }
-    Vec3f vec3() const {
-        if (!j_.is_array() || j_.size() != 3 || !j_[0].is_number() || !j_[1].is_number() ||
-            !j_[2].is_number())
-            fail(std::string("expected an array of 3 numbers, got ") + typeName(j_));
-        const Vec3f v{at(0).number(), at(1).number(), at(2).number()};
-        return v;
-    }
-    // An RGB triple, or one number for grey; never negative.
-    Vec3f colour() const {
-        Vec3f c;
-        if (j_.is_number())
-            c = Vec3f(number());
-        else if (j_.is_array() && j_.size() == 3)
-            c = vec3();
-        else
-            fail(std::string("expected an RGB colour [r, g, b] or one number, got ") +
-                 typeName(j_));
-        if (c.x < 0 || c.y < 0 || c.z < 0) fail("colour components must not be negative");
-        return c;
-    }
-    fs::path file() const {
-        const std::string s = string();
-        if (s.empty()) fail("empty file name");
-        const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : ctx_.baseDir / s;
-        std::error_code ec;
-        const fs::file_status status = fs::status(p, ec);
-        if (!fs::exists(status)) fail("file '" + p.string() + "' does not exist");
-        if (!fs::is_regular_file(status)) fail("'" + p.string() + "' is not a regular file");
-        return p;
-    }
-
-  private:
-    std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
-    const Json& j_;
-    std::string path_;
-    const Context& ctx_;
-};
-
-struct Builder {
-    SceneDescription scene;
-    std::map<std::string, int> materialIndex;
-    std::map<std::string, int> textureIndex;  // by path, loaded once
-    // The component names of the mix material parsed last, with their slot.
-    struct MixPart {
-        Node name;
-        int slot;
-    };
-    std::vector<MixPart> mixParts;
-
-    int material(const Node& n) {
-        const std::string name = n.string();
-        auto it = materialIndex.find(name);
-        if (it == materialIndex.end()) n.fail("unknown material '" + name + "'");
-        return it->second;
-    }
-};
-
-struct Metal {
-    const char* name;
-    Vec3f eta, k;
-};
-// Complex indices of refraction at the sRGB primaries' wavelengths
-// (approximately 650, 550, 450 nm), from the measured data pbrt ships.
-constexpr Metal kMetals[] = {
-    {"gold", {0.143f, 0.374f, 1.442f}, {3.983f, 2.385f, 1.603f}},
-    {"silver", {0.155f, 0.117f, 0.138f}, {4.828f, 3.122f, 2.147f}},
-    {"copper", {0.200f, 0.924f, 1.102f}, {3.912f, 2.452f, 2.142f}},
-    {"aluminium", {1.657f, 0.880f, 0.521f}, {9.224f, 6.270f, 4.837f}},
-};
-
-// GGX alpha: "roughness", and "roughnessV" along v when anisotropic.
-void parseRoughness(const Node& n, Material& m) {
-    for (const char* key : {"roughness", "roughnessV"}) {
-        if (!n.has(key)) continue;
-        const float r = n[key].number();
-        if (r < 0) n[key].fail("must not be negative");
-        (key[9] == 'V' ? m.roughnessV : m.roughness) = r;
-    }
-}
-
-// A conductor's complex index: a named "metal", or "eta" and "k".
-void parseConductorIndex(const Node& n, Material& m) {
-    if (n.has("metal")) {
-        if (n.has("eta") || n.has("k")) n.fail("give either 'metal' or 'eta' and 'k', not both");
-        const Node metal = n["metal"];
-        const std::string s = metal.string();
-        const Metal* found = nullptr;
-        for (const Metal& x : kMetals)
-            if (s == x.name) found = &x;
-        if (!found) metal.fail("unknown metal '" + s + "' (gold, silver, copper, aluminium)");
-        m.eta = found->eta, m.k = found->k;
-    } else {
-        m.eta = n["eta"].colour();
-        m.k = n["k"].colour();
-    }
-}
-
-// A whole number from lo to hi.
-int countIn(const Node& n, int lo, int hi) {
-    const float v = n.number();
-    if (v != std::floor(v) || v < float(lo) || v > float(hi))
-        n.fail("must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
-    return int(v);
-}
-
-// The coating of coateddiffuse and coatedconductor (scene.h's Coating;
-// pbrt-v4's parameters and defaults).
-Coating parseCoating(const Node& n) {
-    n.keys({"ior", "roughness", "roughnessV", "thickness", "albedo", "g", "maxDepth", "samples"});
-    Coating c;
-    if (n.has("ior")) c.eta = n["ior"].positive();
-    Material alphas;
-    alphas.roughness = 0;
-    parseRoughness(n, alphas);
-    c.roughness = alphas.roughness, c.roughnessV = alphas.roughnessV;
-    if (n.has("thickness")) c.thickness = n["thickness"].positive();
-    if (n.has("albedo")) {
-        c.albedo = n["albedo"].colour();
-        if (maxComponent(c.albedo) > 1) n["albedo"].fail("must be at most 1");
-    }
-    if (n.has("g")) {
-        c.g = n["g"].number();
-        if (!(c.g > -1 && c.g < 1)) n["g"].fail("must lie strictly between -1 and 1");
-    }
-    if (n.has("maxDepth")) c.maxDepth = countIn(n["maxDepth"], 1, 4096);
-    if (n.has("samples")) c.nSamples = countIn(n["samples"], 1, 4096);
-    return c;
-}
-
-// The keys of a material's bump and normal maps (render/bump_mapping.h).
-constexpr std::string_view kMapKeys[] = {"normalMap", "bumpMap", "bumpScale"};
-
-// An image named by node t, read once per file; `linear`: its code values
-// taken as linear (a PNG's sRGB decoding undone), as maps need.
-int loadImage(const Node& t, Builder& b, bool linear) {
-    const std::string path = t.file().lexically_normal().string();
-    const std::string key = linear ? path + "\nlinear" : path;
-    auto it = b.textureIndex.find(key);
-    if (it != b.textureIndex.end()) return it->second;
-    try {
-        b.scene.textures.push_back(loadTexture(path));
-    } catch (const InputError& e) {
-        t.fail(e.what());
-    }
-    if (linear) reencodeTexels(b.scene.textures.back(), ImageEncoding{ImageEncoding::Linear});
-    return b.textureIndex.emplace(key, int(b.scene.textures.size()) - 1).first->second;
-}
-
-// "normalMap": an image of tangent-space normals; or "bumpMap": an image of
-// heights (its first channel, times "bumpScale", default 1), read linearly,
-// looked up at the hit's (u, v) as pbrt-v4's imagemap (bilinear, repeating).
-void parseMaps(const Node& n, Material& m, Builder& b) {
-    if (n.has("normalMap") && n.has("bumpMap"))
-        n.fail("give either 'normalMap' or 'bumpMap', not both");
-    if (n.has("bumpScale") && !n.has("bumpMap")) n["bumpScale"].fail("needs 'bumpMap'");
-    if (n.has("normalMap")) m.normalMap = loadImage(n["normalMap"], b, true);
-    if (!n.has("bumpMap")) return;
-    ShadingTexture heights;
-    heights.kind = TextureKind::Image;
-    heights.isFloat = true;
-    heights.image = loadImage(n["bumpMap"], b, true);
-    if (n.has("bumpScale")) heights.scale = n["bumpScale"].number();
-    b.scene.shadingTextures.push_back(heights);
-    m.displacementTexture = int(b.scene.shadingTextures.size()) - 1;
-}
-
-Material parseMaterial(const Node& n, const std::string& name, Builder& b) {
-    Material m;
-    m.name = name;
-    const std::string type = n["type"].string();
-    if (type == "diffuse") {
-        n.keys({"type", "albedo", "texture"}, kMapKeys);
-        m.type = MaterialType::Diffuse;
-        // The texture is the albedo (scene.h); both would leave one unused.
-        if (n.has("albedo") && n.has("texture"))
-            n.fail("give either 'albedo' or 'texture', not both");
-        if (n.has("albedo")) m.albedo = n["albedo"].colour();
-        if (n.has("texture")) {
-            m.texture = loadImage(n["texture"], b, false);
-            m.albedo = Vec3f(1.0f);
-        }
-    } else if (type == "mirror") {
-        n.keys({"type", "albedo"}, kMapKeys);
-        m.type = MaterialType::Mirror;
-        m.albedo = n.has("albedo") ? n["albedo"].colour() : Vec3f(1.0f);
-    } else if (type == "dielectric" || type == "thindielectric") {
-        if (type == "dielectric")
-            n.keys({"type", "ior", "roughness", "roughnessV"}, kMapKeys);
-        else
-            n.keys({"type", "ior"}, kMapKeys);
-        m.type = type == "dielectric" ? MaterialType::Dielectric : MaterialType::ThinDielectric;
-        m.albedo = Vec3f(1.0f);
-        m.roughness = 0;
-        if (n.has("ior")) m.ior = n["ior"].positive();
-        parseRoughness(n, m);
-    } else if (type == "diffusetransmission") {
-        n.keys({"type", "reflectance", "transmittance"}, kMapKeys);
-        m.type = MaterialType::DiffuseTransmission;
-        const auto fraction = [&](const char* key) {
-            const Vec3f c = n[key].colour();
-            if (maxComponent(c) > 1) n[key].fail("must be at most 1");
-            return c;
-        };
-        if (n.has("reflectance"))
-            m.albedo = fraction("reflectance");
-        else
-            m.albedo = Vec3f(0.25f);
-        if (n.has("transmittance")) m.transmittance = fraction("transmittance");
-    } else if (type == "mix") {
-        n.keys({"type", "materials", "amount"});
-        m.type = MaterialType::Mix;
-        const Node parts = n["materials"];
-        if (parts.size() != 2) parts.fail("expected two material names");
-        // Resolved when every material is known (resolveMixes).
-        for (int i = 0; i < 2; ++i) b.mixParts.push_back({parts.at(size_t(i)), i});
-        if (n.has("amount")) m.amount = n["amount"].number();
-    } else if (type == "interface") {
-        n.keys({"type"});
-        m.type = MaterialType::Interface;
-    } else if (type == "conductor") {
-        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV"}, kMapKeys);
-        m.type = MaterialType::Conductor;
-        parseConductorIndex(n, m);
-        parseRoughness(n, m);
-    } else if (type == "coateddiffuse") {
-        n.keys({"type", "reflectance", "coating"}, kMapKeys);
-        m.type = MaterialType::CoatedDiffuse;
-        m.albedo = Vec3f(0.5f);
-        if (n.has("reflectance")) {
-            m.albedo = n["reflectance"].colour();
-            if (maxComponent(m.albedo) > 1) n["reflectance"].fail("must be at most 1");
-        }
-        if (n.has("coating")) m.coating = parseCoating(n["coating"]);
-    } else if (type == "coatedconductor") {
-        n.keys({"type", "metal", "eta", "k", "roughness", "roughnessV", "coating"}, kMapKeys);
-        m.type = MaterialType::CoatedConductor;
-        m.roughness = 0;
-        parseConductorIndex(n, m);
-        parseRoughness(n, m);
-        if (n.has("coating")) m.coating = parseCoating(n["coating"]);
-    } else {
-        n["type"].fail("unknown material type '" + type +
-                       "' (diffuse, mirror, dielectric, conductor, thindielectric, "
-                       "diffusetransmission, coateddiffuse, coatedconductor, mix, interface)");
-    }
-    if (m.type != MaterialType::Mix && m.type != MaterialType::Interface) parseMaps(n, m, b);
-    return m;
+fs::path Node::file() const {
+    const std::string s = string();
+    if (s.empty()) fail("empty file name");
+    const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : ctx_.baseDir / s;
+    std::error_code ec;
+    const fs::file_status status = fs::status(p, ec);
+    if (!fs::exists(status)) fail("file '" + p.string() + "' does not exist");
+    if (!fs::is_regular_file(status)) fail("'" + p.string() + "' is not a regular file");
+    return p;
 }
 
 Affine parseTransform(const Node& n) {
@@ -393,6 +60,8 @@ Affine parseTransform(const Node& n) {
     return xf;
 }
 
+namespace {
+
 // A list of polygons with `corners` vertices each: [[[x,y,z], ...], ...].
 void appendPolygons(const Node& list, int corners, Mesh& mesh) {
     for (size_t i = 0; i < list.size(); ++i) {
@@ -411,7 +80,7 @@ void appendPolygons(const Node& list, int corners, Mesh& mesh) {
 
 void parseMesh(const Node& n, size_t index, Builder& b) {
     if (n.has("obj")) {
-        n.keys({"obj", "material", "transform"});
+        n.keys({"obj", "material", "transform", "alpha"});
         const size_t first = b.scene.meshes.size();
         const int forced = n.has("material") ? b.material(n["material"]) : -1;
         const Node obj = n["obj"];
@@ -432,10 +101,15 @@ void parseMesh(const Node& n, size_t index, Builder& b) {
             for (size_t i = first; i < b.scene.meshes.size(); ++i)
                 transformMesh(b.scene.meshes[i], xf);
         }
+        if (n.has("alpha")) {
+            const int alpha = alphaParam(n["alpha"], b);
+            for (size_t i = first; i < b.scene.meshes.size(); ++i)
+                b.scene.meshes[i].alphaTexture = alpha;
+        }
         return;
     }
     n.keys({"name", "material", "quads", "triangles", "positions", "indices", "normals", "uvs",
-            "emission", "twoSided", "transform"});
+            "emission", "twoSided", "transform", "alpha"});
     Mesh mesh;
     mesh.name = n.has("name") ? n["name"].string() : "mesh" + std::to_string(index);
     mesh.material = b.material(n["material"]);
@@ -485,6 +159,10 @@ void parseMesh(const Node& n, size_t index, Builder& b) {
     if (n.has("emission")) mesh.emission = n["emission"].colour();
     if (n.has("twoSided")) mesh.twoSided = n["twoSided"].boolean();
     if (n.has("transform")) transformMesh(mesh, parseTransform(n["transform"]));
+    if (n.has("alpha")) {
+        if (!isBlack(mesh.emission)) n["alpha"].fail("an emitting mesh cannot be cut out");
+        mesh.alphaTexture = alphaParam(n["alpha"], b);
+    }
     b.scene.meshes.push_back(std::move(mesh));
 }
 
@@ -606,11 +284,13 @@ void parseLight(const Node& n, size_t index, Builder& b) {
 }
 
 void parseSphere(const Node& n, Builder& b) {
-    n.keys({"center", "radius", "material"});
+    n.keys({"center", "radius", "material", "emission", "twoSided"});
     Sphere s;
     s.center = n["center"].vec3();
     s.radius = n["radius"].positive();
     s.material = b.material(n["material"]);
+    if (n.has("emission")) s.emission = n["emission"].colour();
+    if (n.has("twoSided")) s.twoSided = n["twoSided"].boolean();
     b.scene.spheres.push_back(s);
 }
 
@@ -651,33 +331,22 @@ Json parseText(const std::string& text, const std::string& source) {
 }
 
 }  // namespace
+}  // namespace jsonscene
 
-// A mix material that contains itself (directly or through other mixes)
-// chooses forever.
-void rejectCyclicMixes(const std::vector<Material>& mats, const Node& where) {
-    for (size_t i = 0; i < mats.size(); ++i) {
-        if (mats[i].type != MaterialType::Mix) continue;
-        std::vector<char> seen(mats.size(), 0);
-        std::vector<int> stack{mats[i].mix[0], mats[i].mix[1]};
-        while (!stack.empty()) {
-            const int c = stack.back();
-            stack.pop_back();
-            if (c == int(i)) where.fail("mix material '" + mats[i].name + "' contains itself");
-            if (seen[size_t(c)] || mats[size_t(c)].type != MaterialType::Mix) continue;
-            seen[size_t(c)] = 1;
-            stack.push_back(mats[size_t(c)].mix[0]);
-            stack.push_back(mats[size_t(c)].mix[1]);
-        }
-    }
-}
+namespace fs = std::filesystem;
+using jsonscene::Builder;
+using jsonscene::Context;
+using jsonscene::Json;
+using jsonscene::Node;
 
 SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir,
                                 const std::string& source) {
+    using namespace jsonscene;
     const Json j = parseText(text, source);
     const Context ctx{source, baseDir};
     const Node root(j, "", ctx);
     root.keys({"name", "credit", "camera", "resolution", "environment", "environmentMap",
-               "materials", "meshes", "lights", "spheres", "lightSampler"});
+               "textures", "materials", "meshes", "lights", "spheres", "lightSampler"});
     Builder b;
     SceneDescription& s = b.scene;
     s.name = root.has("name") ? root["name"].string() : fs::path(source).stem().string();
@@ -710,26 +379,8 @@ SceneDescription parseJsonScene(const std::string& text, const fs::path& baseDir
                     s.defaults.lightSampler + "'");
     }
 
-    if (root.has("materials")) {
-        struct MixName {
-            int material, slot;
-            Node name;
-        };
-        std::vector<MixName> mixNames;
-        const Node mats = root["materials"];
-        mats.requireObject();
-        for (const auto& [name, value] : mats.json().items()) {
-            const Node m(value, mats.path() + "." + name, ctx);
-            s.materials.push_back(parseMaterial(m, name, b));
-            b.materialIndex[name] = int(s.materials.size()) - 1;
-            for (const Builder::MixPart& part : b.mixParts)
-                mixNames.push_back({int(s.materials.size()) - 1, part.slot, part.name});
-            b.mixParts.clear();
-        }
-        for (const MixName& x : mixNames)
-            s.materials[size_t(x.material)].mix[x.slot] = b.material(x.name);
-        rejectCyclicMixes(s.materials, mats);
-    }
+    if (root.has("textures")) parseTextures(root["textures"], b);
+    if (root.has("materials")) parseMaterials(root["materials"], b);
     if (root.has("meshes")) {
         const Node meshes = root["meshes"];
         for (size_t i = 0; i < meshes.size(); ++i) parseMesh(meshes.at(i), i, b);
@@ -812,6 +463,10 @@ std::string sceneToJson(const SceneDescription& s) {
         if (m.normalMap >= 0 || m.displacementTexture >= 0)
             throw InputError("cannot write material '" + m.name +
                              "': bump and normal maps have no file to refer to");
+        if (m.albedoTexture >= 0 || m.transmittanceTexture >= 0 || m.roughnessTexture >= 0 ||
+            m.roughnessVTexture >= 0 || m.amountTexture >= 0)
+            throw InputError("cannot write material '" + m.name +
+                             "': its texture graph is not written");
         switch (m.type) {
             case MaterialType::Diffuse:
                 if (m.texture >= 0)
@@ -872,6 +527,8 @@ std::string sceneToJson(const SceneDescription& s) {
     j["materials"] = mats;
     Json meshes = Json::array();
     for (const Mesh& m : s.meshes) {
+        if (m.alphaTexture >= 0)
+            throw InputError("cannot write mesh '" + m.name + "': its alpha is not written");
         Json o;
         o["name"] = m.name;
         o["material"] = names.at(size_t(m.material));
@@ -917,10 +574,14 @@ std::string sceneToJson(const SceneDescription& s) {
     }
     if (!s.spheres.empty()) {
         Json spheres = Json::array();
-        for (const Sphere& sp : s.spheres)
-            spheres.push_back({{"center", toJson(sp.center)},
-                               {"radius", shortest(sp.radius)},
-                               {"material", names.at(size_t(sp.material))}});
+        for (const Sphere& sp : s.spheres) {
+            Json js = {{"center", toJson(sp.center)},
+                       {"radius", shortest(sp.radius)},
+                       {"material", names.at(size_t(sp.material))}};
+            if (!isBlack(sp.emission)) js["emission"] = toJson(sp.emission);
+            if (sp.twoSided) js["twoSided"] = true;
+            spheres.push_back(js);
+        }
         j["spheres"] = spheres;
     }
     return j.dump(2) + "\n";

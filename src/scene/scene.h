@@ -107,10 +107,15 @@ struct Mesh {
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
+// A whole sphere, rendered exactly. With non-zero `emission` it is an area
+// light emitting that radiance outwards (both ways when `twoSided`), sampled
+// by the cone it subtends (render/sphere_light.h).
 struct Sphere {
     Vec3f center;
     float radius = 1;
     int material = 0;
+    Vec3f emission{0.0f};
+    bool twoSided = false;
 };
 
 // How film positions become rays.

@@ -195,6 +195,8 @@ void validateSphere(const Sphere& s, const std::string& what, size_t materialCou
     if (s.material < 0 || size_t(s.material) >= materialCount)
         fail(source,
              what + " refers to material " + std::to_string(s.material) + " which does not exist");
+    if (!nonNegativeFinite(s.emission))
+        fail(source, what + " has a negative or non-finite emission " + str(s.emission));
 }
 
 std::string objectName(const SceneDescription& scene, size_t i) {
@@ -224,9 +226,13 @@ bool validateInstancing(const SceneDescription& scene, const std::string& source
                          "either)");
             validateMesh(mesh, i, scene.materials.size(), source, owner + " ");
         }
-        for (size_t i = 0; i < object.spheres.size(); ++i)
+        for (size_t i = 0; i < object.spheres.size(); ++i) {
+            if (!isBlack(object.spheres[i].emission))
+                fail(source, owner + " has an emitting sphere " + std::to_string(i) +
+                                 ": instanced shapes cannot be area lights");
             validateSphere(object.spheres[i], owner + " sphere " + std::to_string(i),
                            scene.materials.size(), source);
+        }
     }
     bool geometry = false;
     for (size_t i = 0; i < scene.instances.size(); ++i) {

@@ -222,20 +222,30 @@ void shape(ImportState& st, const std::string& type, const ParamSet& given,
         if (!(r > 0)) throw errorAt(where, "sphere: radius must be positive");
         const bool whole = zMin <= -r && zMax >= r && phiMax >= 360;
         const auto scale = similarityScale(st.gs.ctm);
-        // An exact sphere has no orientation; a reversed one (inside out, as
-        // for a dielectric's eta) is made of triangles, which do.
-        // A cut-out one too (the cut-out filters triangles).
-        if (whole && scale && st.gs.ctm.isAffine() && !st.gs.areaLight &&
-            !st.gs.reverseOrientation && st.shapeAlpha < 0) {
+        // An exact sphere faces outwards; a reversed one (inside out, as for
+        // a dielectric's eta) is made of triangles, which can face in, and so
+        // is an emitting one under a mirror (pbrt-v4 flips its normal) or in
+        // an object (which cannot emit: place() says so). A cut-out one too
+        // (the cut-out filters triangles).
+        const bool exactLight =
+            !st.gs.areaLight || (st.currentObject < 0 && !st.gs.ctm.swapsHandedness());
+        if (whole && scale && st.gs.ctm.isAffine() && exactLight && !st.gs.reverseOrientation &&
+            st.shapeAlpha < 0) {
             Sphere sp{st.gs.ctm.point({0, 0, 0}), r * *scale,
                       st.gs.material >= 0 ? st.gs.material : st.defaultMaterial()};
+            if (st.gs.areaLight) {
+                // pbrt-v4 scales `power` by the object-space area (Sphere::Area).
+                sp.emission =
+                    areaLightEmission(st, *st.gs.areaLight, Mesh{}, 1, 4 * kPi * r * r, where);
+                sp.twoSided = st.gs.areaLight->twoSided;
+            }
             SceneDescription& s = st.result.scene;
             if (st.currentObject >= 0)
                 s.objects[size_t(st.currentObject)].spheres.push_back(sp);
             else
                 s.spheres.push_back(sp);
         } else {
-            // Partial, sheared, or emitting (pathlab's lights are triangles).
+            // Partial, sheared, or an emitter that may face inwards.
             const double zLow = std::max(zMin, -r), zHigh = std::min(zMax, r);
             place(st, tessellatedSphere(r, zMin, zMax, phiMax), type, where, 1,
                   std::min(phiMax, 360.0f) * kPi / 180 * r * (zHigh - zLow));
