@@ -209,7 +209,8 @@ const BadInput kCases[] = {
     {"unknown key in spec", "study {dir}/unknown-key.toml -o {dir}/study", "study",
      "{dir}/unknown-key.toml:4: key 'seedz' is not a study spec key (known: name, scenes, "
      "samplers, spp, seeds, resolution, max_depth, russian_roulette, "
-     "roulette_depth, light_sampler, spectral, metrics, time_budget_seconds, reference, "
+     "roulette_depth, light_sampler, spectral, wavelengths, metrics, time_budget_seconds, "
+     "reference, "
      "external, "
      "difficulty)"},
     {"unknown sampler in spec", "study {dir}/unknown-sampler.toml -o {dir}/study", "study",

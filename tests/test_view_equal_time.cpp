@@ -62,9 +62,13 @@ TEST(ViewPassScheduler, PassesGrowSoTheirFixedCostFallsBelowFivePercent) {
         int passes = 0;
         while (!plan.done()) {
             const Pass pass = plan.next();
-            if (passes == 0) EXPECT_EQ(pass.target[0], 1) << "an image at once";
+            if (passes == 0) {
+                EXPECT_EQ(pass.target[0], 1) << "an image at once";
+            }
             const double s = fixed + perSample * (pass.target[0] - plan.spp(0));
-            if (passes < 4) EXPECT_LT(s, 0.5) << "pass " << passes;
+            if (passes < 4) {
+                EXPECT_LT(s, 0.5) << "pass " << passes;
+            }
             plan.finished(pass, s, 0);
             seconds += s, longest = std::max(longest, s), ++passes;
         }

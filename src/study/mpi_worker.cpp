@@ -49,7 +49,8 @@ std::vector<char> failureMessage(const MpiSession& session, const std::string& w
 }
 
 std::exception_ptr reportedFailure(const std::vector<char>& bytes) {
-    const std::string text(bytes.begin() + (bytes.empty() ? 0 : 1), bytes.end());
+    const std::string text =
+        bytes.size() > 1 ? std::string(bytes.data() + 1, bytes.size() - 1) : std::string();
     if (!bytes.empty() && bytes[0] == 'I') return std::make_exception_ptr(InputError(text));
     return std::make_exception_ptr(std::runtime_error(text));
 }
