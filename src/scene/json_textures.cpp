@@ -141,14 +141,9 @@ void parseImageMap(const Node& t, ShadingTexture& node, Builder& b) {
     }
     if (t.has("wrap")) {
         const std::string wrap = t["wrap"].string();
-        if (wrap == "repeat")
-            node.wrap = TextureWrap::Repeat;
-        else if (wrap == "black")
-            node.wrap = TextureWrap::Black;
-        else if (wrap == "clamp")
-            node.wrap = TextureWrap::Clamp;
-        else
-            t["wrap"].fail("unknown wrap '" + wrap + "' (repeat, black or clamp)");
+        const std::optional<TextureWrap> named = textureWrapNamed(wrap);
+        if (!named) t["wrap"].fail("unknown wrap '" + wrap + "' (repeat, black or clamp)");
+        node.wrap = *named;
     }
     if (t.has("scale")) node.scale = t["scale"].number();
     if (t.has("invert")) node.invert = t["invert"].boolean();

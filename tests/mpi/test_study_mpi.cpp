@@ -120,14 +120,16 @@ pid_t startMpiStudy(const fs::path& spec, const fs::path& out, const fs::path& l
     return pid;
 }
 
-// 3 samplers × 7 spp × 2 seeds = 42 cells of a 48×48 Cornell box.
+// 3 samplers × 7 spp × 2 seeds = 42 cells of a 128×128 Cornell box: each render
+// long enough (tens of ms on one core) that rank 1 is still rendering when the
+// first cell is committed and the test kills it.
 std::string killSpec() {
     return "name = \"mpi-kill\"\n"
            "scenes = [\"cornell-box\"]\n"
            "samplers = [\"standard\", \"halton-owen\", \"independent\"]\n"
            "spp = [1, 2, 4, 8, 16, 32, 64]\n"
            "seeds = 2\n"
-           "resolution = [48, 48]\n"
+           "resolution = [128, 128]\n"
            "[reference]\nspp = 128\n";
 }
 
@@ -164,7 +166,7 @@ TEST(MpiStudy, RankKilledThenResumeFinishesEveryCellOnce) {
     EXPECT_EQ(resumed.err.find("rendering reference"), std::string::npos) << resumed.err;
     const auto expected = testing::expectedCells(
         "cornell-box", {"standard", "halton-owen", "independent"}, {1, 2, 4, 8, 16, 32, 64}, 2);
-    const auto after = testing::expectCompleteStudy(out, expected, 48, 48);
+    const auto after = testing::expectCompleteStudy(out, expected, 128, 128);
     // A cell finished before the kill is kept, not rendered again.
     for (const auto& [key, row] : before) {
         ASSERT_TRUE(after.count(key));

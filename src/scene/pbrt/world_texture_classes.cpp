@@ -145,14 +145,10 @@ void readImageMap(ImportState& st, const ParamSet& ps, const SourceLocation& whe
     }
     ps.ignore("maxanisotropy");  // EWA's
     const std::string wrap = ps.getString("wrap", "repeat");
-    if (wrap == "repeat")
-        node.wrap = TextureWrap::Repeat;
-    else if (wrap == "black")
-        node.wrap = TextureWrap::Black;
-    else if (wrap == "clamp")
-        node.wrap = TextureWrap::Clamp;
-    else
+    const std::optional<TextureWrap> named = textureWrapNamed(wrap);
+    if (!named)
         throw errorAt(where, "Texture: unknown wrap '" + wrap + "' (repeat, black or clamp)");
+    node.wrap = *named;
     node.scale = ps.getFloat("scale", 1);
     node.invert = ps.getBool("invert", false);
 }

@@ -5,6 +5,8 @@
 // The image texels themselves live in SceneDescription::textures.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/affine.h"
@@ -32,6 +34,13 @@ struct TextureMapping {
 
 // What an image lookup outside [0, 1]² reads (pbrt-v4's WrapMode).
 enum class TextureWrap { Repeat, Black, Clamp };
+// pbrt-v4's names, "repeat", "black", "clamp"; nothing for any other.
+inline std::optional<TextureWrap> textureWrapNamed(const std::string& name) {
+    if (name == "repeat") return TextureWrap::Repeat;
+    if (name == "black") return TextureWrap::Black;
+    if (name == "clamp") return TextureWrap::Clamp;
+    return std::nullopt;
+}
 
 enum class TextureKind {
     Constant,      // `value`
