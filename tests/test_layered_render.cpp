@@ -11,12 +11,12 @@
 
 #include "render/layered/walk_dimensions.h"
 #include "render/renderer.h"
+#include "spectral_test_util.h"
 
 namespace pathlab {
 namespace {
 
 SceneDescription coatedSphereInFurnace(float roughness, float albedo) {
-    SceneDescription s;
     Material m;
     m.type = MaterialType::CoatedDiffuse;
     m.albedo = Vec3f(1.0f);
@@ -24,12 +24,7 @@ SceneDescription coatedSphereInFurnace(float roughness, float albedo) {
     m.coating.thickness = 0.1f;
     m.coating.albedo = Vec3f(albedo);
     m.coating.maxDepth = 500;
-    s.materials.push_back(m);
-    s.spheres.push_back({Vec3f(0, 0, 0), 0.8f, 0});
-    s.environment = Vec3f(1.0f);
-    s.camera = Camera{{0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 30};
-    s.resolution = {12, 12};
-    return s;
+    return test::sphereInFurnace(m);
 }
 
 double meanOf(const Image& image) {
